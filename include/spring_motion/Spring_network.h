@@ -1,0 +1,351 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_SPRING_NETWORK_H
+#define SPRING_MOTION_SPRING_NETWORK_H
+
+#include <spring_motion/Error.h>
+#include <spring_motion/internal/simplex_tables.h>
+#include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <type_traits>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace spring_motion {
+
+using Index = std::uint32_t;
+
+/// The spring network of a simplex mesh in flat, index-based arrays: built
+/// once per mesh, then every step works on it and never on mesh handles.
+/// Edges are the springs; elements give the angles; facets of exactly one
+/// element form the boundary.
+template <int D>
+struct Spring_network
+{
+  static_assert(D == 2 || D == 3, "Spring_network: dimension must be 2 or 3");
+  static constexpr int dimension = D;
+  using Tables = internal::Simplex_tables<D>;
+  static constexpr int edges_per_element = Tables::edges;
+  using Point = std::array<double, D>;
+  using Element = std::array<Index, D + 1>;
+  using Facet = std::array<Index, D>;
+  using Edge = std::array<Index, 2>;
+
+  std::vector<Point> points;          // initial positions
+  std::vector<Element> elements;
+  std::vector<Edge> edges;            // unique, edges[e][0] < edges[e][1], sorted
+  std::vector<Index> element_edges;   // edges_per_element per element, local numbering of Simplex_tables
+
+  // CSR adjacency: the neighbours of vertex i are adjacency[offsets[i] .. offsets[i+1]),
+  // reached through edge adjacency_edge[...]
+  std::vector<Index> adjacency_offsets, adjacency, adjacency_edge;
+
+  // edge -> the (element, local edge) slots around it, as element * edges_per_element + local
+  std::vector<Index> edge_slot_offsets, edge_slots;
+
+  // 3D only: the unique triangular faces, their edges (local edge k opposite
+  // local vertex k) and edge -> (face, local) slots as face * 3 + local.
+  std::vector<std::array<Index, 3>> faces;
+  std::vector<Index> face_edges;
+  std::vector<Index> edge_face_slot_offsets, edge_face_slots;
+
+  std::vector<Facet> boundary_facets;
+  std::vector<char> on_boundary;      // per vertex
+  // labels of the boundary parts each vertex lies on: vertex_labels[offsets[i] .. offsets[i+1])
+  std::vector<Index> vertex_label_offsets;
+  std::vector<int> vertex_labels;
+
+  double longest_initial_edge = 0;
+
+  std::size_t number_of_vertices() const { return points.size(); }
+  std::size_t number_of_elements() const { return elements.size(); }
+  std::size_t number_of_edges() const { return edges.size(); }
+  Index edge_of(Index element, int local) const { return element_edges[element * edges_per_element + local]; }
+};
+
+/// A labeled boundary facet given by the mesh (vertex indices into the network).
+template <int D>
+struct Labeled_facet
+{
+  std::array<Index, D> vertices;
+  int label;
+};
+
+/// Builds the network from points and elements. Throws `Error` on
+/// non-finite coordinates, vertex indices out of range, repeated vertices in
+/// an element, an empty mesh, and labeled facets that are not boundary facets.
+/// Vertices used by no element are kept (they take no part in the motion).
+template <int D>
+Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
+                                      std::vector<std::array<Index, D + 1>> elements,
+                                      const std::vector<Labeled_facet<D>>& labeled_facets = {})
+{
+  using Net = Spring_network<D>;
+  using Tables = typename Net::Tables;
+  constexpr int E = Net::edges_per_element;
+  Net net;
+  SPRING_MOTION_CHECK(!elements.empty(), "the mesh has no elements");
+  const std::size_t n = points.size();
+  SPRING_MOTION_CHECK(n < std::numeric_limits<Index>::max(), "too many vertices: " << n);
+  for(std::size_t i = 0; i < n; ++i)
+    for(int c = 0; c < D; ++c)
+      SPRING_MOTION_CHECK(std::isfinite(points[i][c]),
+                          "vertex " << i << " has a non-finite coordinate " << points[i][c]);
+  for(std::size_t t = 0; t < elements.size(); ++t)
+    for(int a = 0; a <= D; ++a) {
+      SPRING_MOTION_CHECK(elements[t][a] < n, "element " << t << " uses vertex " << elements[t][a]
+                                                          << ", out of range (" << n << " vertices)");
+      for(int b = 0; b < a; ++b)
+        SPRING_MOTION_CHECK(elements[t][a] != elements[t][b],
+                            "element " << t << " repeats vertex " << elements[t][a]);
+    }
+  net.points = std::move(points);
+  net.elements = std::move(elements);
+  const std::size_t m = net.elements.size();
+
+  // Edges: sort (min, max, slot) records, then number the unique pairs.
+  {
+    struct Rec { Index a, b, slot; };
+    std::vector<Rec> recs;
+    recs.reserve(m * E);
+    for(std::size_t t = 0; t < m; ++t)
+      for(int k = 0; k < E; ++k) {
+        Index a = net.elements[t][Tables::edge[k][0]], b = net.elements[t][Tables::edge[k][1]];
+        if(a > b)
+          std::swap(a, b);
+        recs.push_back({a, b, Index(t * E + k)});
+      }
+    std::sort(recs.begin(), recs.end(), [](const Rec& x, const Rec& y) {
+      return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.slot < y.slot);
+    });
+    net.element_edges.resize(m * E);
+    net.edge_slots.resize(recs.size());
+    for(std::size_t r = 0; r < recs.size(); ++r) {
+      if(r == 0 || recs[r].a != recs[r - 1].a || recs[r].b != recs[r - 1].b) {
+        net.edges.push_back({recs[r].a, recs[r].b});
+        net.edge_slot_offsets.push_back(Index(r));
+      }
+      net.element_edges[recs[r].slot] = Index(net.edges.size() - 1);
+      net.edge_slots[r] = recs[r].slot;
+    }
+    net.edge_slot_offsets.push_back(Index(recs.size()));
+  }
+
+  // CSR adjacency, neighbours in increasing order.
+  {
+    std::vector<Index> degree(n + 1, 0);
+    for(const auto& e : net.edges) {
+      ++degree[e[0]];
+      ++degree[e[1]];
+    }
+    net.adjacency_offsets.assign(n + 1, 0);
+    for(std::size_t i = 0; i < n; ++i)
+      net.adjacency_offsets[i + 1] = net.adjacency_offsets[i] + degree[i];
+    net.adjacency.resize(2 * net.edges.size());
+    net.adjacency_edge.resize(2 * net.edges.size());
+    std::vector<Index> fill(net.adjacency_offsets.begin(), net.adjacency_offsets.end() - 1);
+    // edges are sorted by (a, b): visiting them in order fills every row sorted,
+    // first the smaller neighbours (as b), then the larger ones (as a)
+    for(Index e = 0; e < net.edges.size(); ++e) {
+      const Index b = net.edges[e][1];
+      net.adjacency[fill[b]] = net.edges[e][0];
+      net.adjacency_edge[fill[b]++] = e;
+    }
+    for(Index e = 0; e < net.edges.size(); ++e) {
+      const Index a = net.edges[e][0];
+      net.adjacency[fill[a]] = net.edges[e][1];
+      net.adjacency_edge[fill[a]++] = e;
+    }
+  }
+
+  // Facets: those of exactly one element are the boundary.
+  {
+    using Key = std::array<Index, D>;
+    std::vector<std::pair<Key, Index>> recs; // sorted facet, element
+    recs.reserve(m * (D + 1));
+    for(std::size_t t = 0; t < m; ++t)
+      for(int k = 0; k <= D; ++k) {
+        Key key;
+        for(int c = 0; c < D; ++c)
+          key[c] = net.elements[t][Tables::facet[k][c]];
+        std::sort(key.begin(), key.end());
+        recs.push_back({key, Index(t)});
+      }
+    std::sort(recs.begin(), recs.end());
+    for(std::size_t r = 0; r < recs.size();) {
+      std::size_t s = r;
+      while(s < recs.size() && recs[s].first == recs[r].first)
+        ++s;
+      SPRING_MOTION_CHECK(s - r <= 2, "a facet is shared by " << (s - r)
+                                          << " elements: the mesh is not a manifold simplicial complex");
+      if(s - r == 1)
+        net.boundary_facets.push_back(recs[r].first);
+      if constexpr(D == 3)
+        net.faces.push_back({recs[r].first[0], recs[r].first[1], recs[r].first[2]});
+      r = s;
+    }
+    net.on_boundary.assign(n, 0);
+    for(const auto& f : net.boundary_facets)
+      for(Index v : f)
+        net.on_boundary[v] = 1;
+
+    // Labels: a vertex carries every label of the labeled facets it lies on.
+    std::vector<std::pair<Index, int>> vl;
+    for(const auto& lf : labeled_facets) {
+      Key key = lf.vertices;
+      for(Index v : key)
+        SPRING_MOTION_CHECK(v < n, "labeled facet uses vertex " << v << ", out of range");
+      std::sort(key.begin(), key.end());
+      SPRING_MOTION_CHECK(std::binary_search(net.boundary_facets.begin(), net.boundary_facets.end(), key),
+                          "a facet with label " << lf.label << " is not on the boundary of the mesh");
+      for(Index v : key)
+        vl.push_back({v, lf.label});
+    }
+    std::sort(vl.begin(), vl.end());
+    vl.erase(std::unique(vl.begin(), vl.end()), vl.end());
+    net.vertex_label_offsets.assign(n + 1, 0);
+    for(const auto& p : vl)
+      ++net.vertex_label_offsets[p.first + 1];
+    for(std::size_t i = 0; i < n; ++i)
+      net.vertex_label_offsets[i + 1] += net.vertex_label_offsets[i];
+    net.vertex_labels.reserve(vl.size());
+    for(const auto& p : vl)
+      net.vertex_labels.push_back(p.second);
+  }
+
+  // 3D: faces' edges and edge -> face slots, for face-angle models.
+  if constexpr(D == 3) {
+    const std::size_t nf = net.faces.size();
+    net.face_edges.resize(3 * nf);
+    std::vector<std::pair<Index, Index>> recs; // edge, slot
+    recs.reserve(3 * nf);
+    for(std::size_t f = 0; f < nf; ++f)
+      for(int k = 0; k < 3; ++k) {
+        Index a = net.faces[f][(k + 1) % 3], b = net.faces[f][(k + 2) % 3];
+        if(a > b)
+          std::swap(a, b);
+        const auto it = std::lower_bound(net.edges.begin(), net.edges.end(), typename Net::Edge{a, b});
+        const Index e = Index(it - net.edges.begin());
+        net.face_edges[3 * f + k] = e;
+        recs.push_back({e, Index(3 * f + k)});
+      }
+    std::sort(recs.begin(), recs.end());
+    net.edge_face_slot_offsets.assign(net.edges.size() + 1, 0);
+    net.edge_face_slots.resize(recs.size());
+    for(std::size_t r = 0; r < recs.size(); ++r) {
+      ++net.edge_face_slot_offsets[recs[r].first + 1];
+      net.edge_face_slots[r] = recs[r].second;
+    }
+    for(std::size_t e = 0; e < net.edges.size(); ++e)
+      net.edge_face_slot_offsets[e + 1] += net.edge_face_slot_offsets[e];
+  }
+
+  for(const auto& e : net.edges) {
+    double l2 = 0;
+    for(int c = 0; c < D; ++c)
+      l2 += (net.points[e[0]][c] - net.points[e[1]][c]) * (net.points[e[0]][c] - net.points[e[1]][c]);
+    net.longest_initial_edge = std::max(net.longest_initial_edge, std::sqrt(l2));
+  }
+  return net;
+}
+
+namespace internal {
+struct Any_labeled_facet_visitor
+{
+  template <class F>
+  void operator()(const F&, int) const {}
+};
+template <class Traits, class = void>
+struct Has_labeled_facets : std::false_type {};
+template <class Traits>
+struct Has_labeled_facets<Traits, std::void_t<decltype(std::declval<const Traits&>().for_each_labeled_facet(
+                                      Any_labeled_facet_visitor()))>> : std::true_type {};
+} // namespace internal
+
+/// A network extracted from a CGAL (or user) mesh, with the handles needed to
+/// write the positions back. `handles[i]` is the mesh vertex of network vertex i.
+template <class Mesh, class Traits = Simplicial_mesh_traits<Mesh>>
+struct Extracted_network
+{
+  static constexpr int dimension = Traits::dimension;
+  using Vertex_handle = typename Traits::Vertex_handle;
+  Spring_network<dimension> network;
+  std::vector<Vertex_handle> handles;
+
+  /// Writes positions (one per network vertex) into the mesh.
+  void write_back(Mesh& mesh, const std::vector<std::array<double, dimension>>& positions) const
+  {
+    Traits traits(mesh);
+    for(std::size_t i = 0; i < handles.size(); ++i)
+      traits.set_point(mesh, handles[i], positions[i]);
+  }
+};
+
+/// Extracts the spring network of `mesh` through its `Simplicial_mesh_traits`.
+/// Vertices are numbered in the traits' vertex order, skipping vertices no
+/// domain element uses (the inside of a Mesh_2 hole, for instance).
+template <class Mesh, class Traits = Simplicial_mesh_traits<Mesh>>
+Extracted_network<Mesh, Traits> extract_spring_network(const Mesh& mesh)
+{
+  constexpr int D = Traits::dimension;
+  using Vh = typename Traits::Vertex_handle;
+  Traits traits(mesh);
+  std::vector<Vh> all;
+  std::unordered_map<Vh, Index> index_of;
+  traits.for_each_vertex([&](Vh v) {
+    index_of.emplace(v, Index(all.size()));
+    all.push_back(v);
+  });
+  std::vector<std::array<Index, D + 1>> elements;
+  std::vector<char> used(all.size(), 0);
+  traits.for_each_element([&](const std::array<Vh, D + 1>& e) {
+    std::array<Index, D + 1> t;
+    for(int k = 0; k <= D; ++k) {
+      auto it = index_of.find(e[k]);
+      SPRING_MOTION_CHECK(it != index_of.end(), "an element uses a vertex the mesh does not list");
+      t[k] = it->second;
+      used[t[k]] = 1;
+    }
+    elements.push_back(t);
+  });
+  // renumber the used vertices densely, keeping the traits' order
+  std::vector<Index> renumber(all.size(), std::numeric_limits<Index>::max());
+  Extracted_network<Mesh, Traits> out;
+  std::vector<std::array<double, D>> points;
+  for(std::size_t i = 0; i < all.size(); ++i)
+    if(used[i]) {
+      renumber[i] = Index(out.handles.size());
+      out.handles.push_back(all[i]);
+      points.push_back(traits.point(all[i]));
+    }
+  for(auto& t : elements)
+    for(auto& v : t)
+      v = renumber[v];
+  std::vector<Labeled_facet<D>> labeled;
+  if constexpr(internal::Has_labeled_facets<Traits>::value) {
+    traits.for_each_labeled_facet([&](const std::array<Vh, D>& f, int label) {
+      Labeled_facet<D> lf;
+      lf.label = label;
+      for(int k = 0; k < D; ++k) {
+        auto it = index_of.find(f[k]);
+        SPRING_MOTION_CHECK(it != index_of.end() && renumber[it->second] != std::numeric_limits<Index>::max(),
+                            "a labeled facet uses a vertex that no element uses");
+        lf.vertices[k] = renumber[it->second];
+      }
+      labeled.push_back(lf);
+    });
+  }
+  out.network = make_spring_network<D>(std::move(points), std::move(elements), labeled);
+  return out;
+}
+
+} // namespace spring_motion
+
+#endif

@@ -1,0 +1,347 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_DEFORM_H
+#define SPRING_MOTION_DEFORM_H
+
+#include <spring_motion/Deform_report.h>
+#include <spring_motion/Error.h>
+#include <spring_motion/Solver_options.h>
+#include <spring_motion/Spring_network.h>
+#include <spring_motion/Vertex_role.h>
+#include <spring_motion/internal/angles.h>
+#include <spring_motion/internal/assemble.h>
+#include <spring_motion/internal/linear_system.h>
+#include <spring_motion/motion/Motion_description.h>
+#include <spring_motion/skewness.h>
+#include <spring_motion/validity.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <deque>
+#include <vector>
+
+namespace spring_motion {
+
+/// Options of a motion run. Defaults follow METHOD.md.
+struct Deform_options
+{
+  /// n: the motion is applied in this many increments
+  std::size_t number_of_steps = 100;
+  Solver_options solver;
+  /// Adaptive substepping: a step that inverts an element is retried from
+  /// the last valid state as 2, 4, ... 2^k equal substeps (stiffness
+  /// recomputed at each) up to k = max_substep_halvings. 0 is the paper's
+  /// method: the run stops at the first invalid step.
+  std::size_t max_substep_halvings = 0;
+  /// Compute R and size ratios after every step (for the step reports); the
+  /// final state's quality is computed in any case.
+  bool quality_every_step = true;
+};
+
+/// Progress callbacks with no-op defaults; derive and override what you need.
+struct Default_deform_visitor
+{
+  void on_start(const Deform_report&) {}
+  void on_step(const Step_report&) {}
+};
+
+/// A spring network with vertex roles and the current positions: the
+/// stateful side of `deform()`, for a flow solver that moves its mesh step
+/// by step. Construction checks the roles: at least one moving vertex, and
+/// every free vertex connected through free vertices to a constrained one
+/// (otherwise the system is singular).
+template <int D>
+class Network_deformer
+{
+public:
+  using Point = std::array<double, D>;
+
+  Network_deformer(Spring_network<D> network, std::vector<Vertex_role> roles)
+      : net_(std::move(network)), roles_(std::move(roles))
+  {
+    const std::size_t n = net_.number_of_vertices();
+    SPRING_MOTION_CHECK(roles_.size() == n, "got " << roles_.size() << " vertex roles for " << n << " vertices");
+    positions_ = net_.points;
+    record_ = record_orientations(net_, positions_);
+    std::vector<char> used(n, 0);
+    for(const auto& e : net_.elements)
+      for(Index v : e)
+        used[v] = 1;
+    std::deque<Index> queue;
+    std::vector<char> reached(n, 0);
+    for(Index i = 0; i < n; ++i) {
+      if(!used[i])
+        continue; // a vertex no element uses takes no part
+      if(roles_[i] == Vertex_role::free)
+        free_.push_back(i);
+      else {
+        (roles_[i] == Vertex_role::moving ? moving_ : fixed_).push_back(i);
+        reached[i] = 1;
+        queue.push_back(i);
+      }
+    }
+    SPRING_MOTION_CHECK(!moving_.empty(), "no vertex is moving: the set of moving vertices is empty");
+    while(!queue.empty()) {
+      const Index i = queue.front();
+      queue.pop_front();
+      for(Index p = net_.adjacency_offsets[i]; p < net_.adjacency_offsets[i + 1]; ++p) {
+        const Index j = net_.adjacency[p];
+        if(!reached[j]) {
+          reached[j] = 1;
+          queue.push_back(j);
+        }
+      }
+    }
+    std::size_t unreached = 0;
+    Index example = 0;
+    for(Index i : free_)
+      if(!reached[i] && unreached++ == 0)
+        example = i;
+    SPRING_MOTION_CHECK(unreached == 0, unreached << " free vertices (for instance vertex " << example
+                                                  << ") are connected to no constrained vertex: "
+                                                     "their displacement is undetermined (singular system)");
+    initial_measure_.resize(net_.number_of_elements());
+    touches_moving_.assign(net_.number_of_elements(), 0);
+    for(std::size_t t = 0; t < net_.number_of_elements(); ++t) {
+      initial_measure_[t] = internal::signed_measure(internal::points_of(net_, positions_, t));
+      for(Index v : net_.elements[t])
+        if(roles_[v] == Vertex_role::moving)
+          touches_moving_[t] = 1;
+    }
+    increment_.assign(n, Point{});
+  }
+
+  const Spring_network<D>& network() const { return net_; }
+  const std::vector<Vertex_role>& roles() const { return roles_; }
+  const std::vector<Point>& positions() const { return positions_; }
+  const Orientation_record& orientation_record() const { return record_; }
+  /// elements with at least one moving vertex
+  bool touches_moving(std::size_t element) const { return touches_moving_[element] != 0; }
+  std::size_t number_of_moving_vertices() const { return moving_.size(); }
+  std::size_t number_of_fixed_vertices() const { return fixed_.size(); }
+  double fraction() const { return t_; }
+
+  /// Runs the whole motion from the current state (t = 0 for a new deformer).
+  template <class Motion, class Model, class Visitor = Default_deform_visitor>
+  Deform_report run(const Motion& motion, const Model& model, const Deform_options& options = {},
+                    Visitor visitor = {})
+  {
+    const auto start = Clock::now();
+    SPRING_MOTION_CHECK(options.number_of_steps > 0, "number_of_steps must be positive");
+    Deform_report rep;
+    rep.dimension = D;
+    rep.vertices = net_.number_of_vertices();
+    rep.elements = net_.number_of_elements();
+    rep.moving_vertices = moving_.size();
+    rep.fixed_vertices = fixed_.size();
+    rep.model = internal::describe_model(model, D);
+    rep.motion = internal::describe_motion(motion);
+    rep.number_of_steps = options.number_of_steps;
+    rep.solver = options.solver;
+    visitor.on_start(rep);
+    const std::size_t n = options.number_of_steps;
+    rep.completed = true;
+    for(std::size_t i = 1; i <= n; ++i) {
+      Step_report s;
+      s.step = i;
+      const double target = double(i) / double(n);
+      Attempt failed;
+      const bool ok = advance(motion, model, options, target, options.max_substep_halvings, s, failed);
+      s.fraction = ok ? target : t_;
+      s.angle_deg = internal::motion_angle_deg(motion, target);
+      rep.converged = rep.converged && s.converged;
+      if(!ok) {
+        s.inverted = failed.inverted.size();
+        rep.steps.push_back(s);
+        Invalid_step inv;
+        inv.step = i;
+        inv.fraction = target;
+        inv.angle_deg = s.angle_deg;
+        inv.elements = std::move(failed.inverted);
+        rep.first_invalid = std::move(inv);
+        rep.completed = false;
+        visitor.on_step(rep.steps.back());
+        break;
+      }
+      if(options.quality_every_step) {
+        const auto q0 = Clock::now();
+        const auto r = element_skewness(net_, positions_, options.solver.threads);
+        s.max_skewness_all = *std::max_element(r.begin(), r.end());
+        s.max_skewness_moving = 0;
+        for(std::size_t t = 0; t < r.size(); ++t)
+          if(touches_moving_[t])
+            s.max_skewness_moving = std::max(s.max_skewness_moving, r[t]);
+        s.min_size_ratio = min_size_ratio(options.solver.threads);
+        s.seconds_check += seconds_since(q0);
+      }
+      rep.steps.push_back(s);
+      visitor.on_step(rep.steps.back());
+    }
+    rep.final_fraction = t_;
+    rep.final_angle_deg = internal::motion_angle_deg(motion, t_);
+    const auto r = element_skewness(net_, positions_, options.solver.threads);
+    rep.quality_all = skewness_histogram(r, [](std::size_t) { return true; });
+    rep.quality_moving = skewness_histogram(r, [&](std::size_t t) { return touches_moving_[t] != 0; });
+    rep.min_size_ratio = min_size_ratio(options.solver.threads);
+    rep.seconds_total = seconds_since(start);
+    return rep;
+  }
+
+  /// min over elements of (current measure / initial measure)
+  double min_size_ratio(int threads = 0) const
+  {
+    const long m = long(net_.number_of_elements());
+    double mn = std::numeric_limits<double>::infinity();
+#pragma omp parallel for reduction(min : mn) schedule(static) num_threads(threads)
+    for(long t = 0; t < m; ++t)
+      mn = std::min(mn, internal::signed_measure(internal::points_of(net_, positions_, std::size_t(t))) /
+                            initial_measure_[std::size_t(t)]);
+    return mn;
+  }
+
+private:
+  using Clock = std::chrono::steady_clock;
+  static double seconds_since(Clock::time_point t0)
+  {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+  }
+
+  struct Attempt
+  {
+    std::vector<std::size_t> inverted;
+  };
+
+  // Moves from the current t to `target`. When an increment inverts an
+  // element, the whole step is retried from the state at its start as 2, 4,
+  // ... 2^halvings equal substeps (stiffness recomputed at each). On failure
+  // the state is the one at the start of the step.
+  template <class Motion, class Model>
+  bool advance(const Motion& motion, const Model& model, const Deform_options& options, double target,
+               std::size_t halvings, Step_report& s, Attempt& failed)
+  {
+    const double t_start = t_;
+    const auto saved_positions = positions_;
+    const auto saved_increment = increment_;
+    for(std::size_t level = 0;; ++level) {
+      const std::size_t parts = std::size_t(1) << level;
+      s.substeps = 0;
+      bool ok = true;
+      for(std::size_t k = 1; k <= parts && ok; ++k) {
+        const double t = k == parts ? target : t_start + (target - t_start) * double(k) / double(parts);
+        ok = try_increment(motion, model, options, t, s, failed);
+      }
+      if(ok)
+        return true;
+      positions_ = saved_positions;
+      increment_ = saved_increment;
+      t_ = t_start;
+      if(level == halvings) {
+        s.substeps = parts; // the finest division tried
+        return false;
+      }
+    }
+  }
+
+  template <class Motion, class Model>
+  bool try_increment(const Motion& motion, const Model& model, const Deform_options& options, double target,
+                     Step_report& s, Attempt& failed)
+  {
+    const int threads = options.solver.threads;
+    const std::size_t n = net_.number_of_vertices();
+    auto t0 = Clock::now();
+    std::vector<Point> delta(n, Point{});
+    if(options.solver.warm_start)
+      for(Index i : free_)
+        delta[i] = increment_[i];
+    for(Index i : moving_) {
+      const Point q = motion(net_.points[i], target);
+      for(int c = 0; c < D; ++c) {
+        SPRING_MOTION_CHECK(std::isfinite(q[c]), "the motion gave a non-finite position for vertex "
+                                                     << i << " at motion fraction " << target);
+        delta[i][c] = q[c] - positions_[i][c];
+      }
+    }
+    for(Index i : fixed_)
+      for(int c = 0; c < D; ++c)
+        delta[i][c] = net_.points[i][c] - positions_[i][c];
+    Stiffness_context ctx{D, net_.longest_initial_edge};
+    internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, angle_scratch_, threads);
+    internal::assemble_system(net_, positions_, model, stiffness_, system_, threads);
+    for(Index i : free_)
+      SPRING_MOTION_CHECK(system_.block || system_.diagonal[i] > 0,
+                          "free vertex " << i << " has zero total stiffness: the model gave k = 0 on all its edges");
+    s.seconds_stiffness += seconds_since(t0);
+
+    t0 = Clock::now();
+    const Solve_report sr = internal::solve_sor(net_, system_, free_, delta, options.solver);
+    s.seconds_solve += seconds_since(t0);
+    s.iterations += sr.iterations;
+    s.converged = s.converged && sr.converged;
+    s.max_update = std::max(s.max_update, sr.last_max_update);
+    s.residual = std::max(s.residual, sr.residual);
+
+    t0 = Clock::now();
+    std::vector<Point> candidate = positions_;
+    for(Index i : free_)
+      for(int c = 0; c < D; ++c)
+        candidate[i][c] += delta[i][c];
+    // constrained vertices land exactly on their prescribed positions
+    for(Index i : moving_)
+      candidate[i] = motion(net_.points[i], target);
+    for(Index i : fixed_)
+      candidate[i] = net_.points[i];
+    failed.inverted.clear();
+    find_inverted_elements(net_, candidate, record_, std::back_inserter(failed.inverted), threads);
+    s.seconds_check += seconds_since(t0);
+    if(!failed.inverted.empty())
+      return false;
+    positions_.swap(candidate);
+    for(Index i : free_)
+      increment_[i] = delta[i];
+    t_ = target;
+    ++s.substeps;
+    return true;
+  }
+
+  Spring_network<D> net_;
+  std::vector<Vertex_role> roles_;
+  std::vector<Index> free_, moving_, fixed_;
+  std::vector<Point> positions_, increment_;
+  Orientation_record record_;
+  std::vector<double> initial_measure_;
+  std::vector<char> touches_moving_;
+  std::vector<double> stiffness_, angle_scratch_;
+  internal::Linear_system<D> system_;
+  double t_ = 0;
+};
+
+/// Moves the interior of `mesh` while the motion carries its moving vertices
+/// through `options.number_of_steps` increments (METHOD.md section 4), and
+/// writes the final positions (the last valid state if a step inverted an
+/// element) back into the mesh.
+///
+/// `role` maps each vertex (`Vertex_info<D>`) to free, fixed or moving, for
+/// instance `moving_boundary_where(pred)` or `Moving_boundary_labels{{1}}`;
+/// `motion` is a `Motion`, `model` an edge or element stiffness model.
+///
+/// After deform() a triangulation is a valid simplicial mesh but in general
+/// no longer Delaunay: do not `insert()` into it or `locate()` in it.
+template <class Mesh, class Role_function, class Motion, class Model, class Visitor = Default_deform_visitor,
+          class Traits = Simplicial_mesh_traits<Mesh>>
+Deform_report deform(Mesh& mesh, const Role_function& role, const Motion& motion, const Model& model,
+                     const Deform_options& options = {}, Visitor visitor = {})
+{
+  constexpr int D = Traits::dimension;
+  auto extracted = extract_spring_network<Mesh, Traits>(mesh);
+  auto roles = assign_roles(extracted.network, role);
+  Network_deformer<D> deformer(std::move(extracted.network), std::move(roles));
+  Deform_report report = deformer.run(motion, model, options, visitor);
+  extracted.write_back(mesh, deformer.positions());
+  return report;
+}
+
+} // namespace spring_motion
+
+#endif

@@ -1,0 +1,42 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_INTERNAL_SIMPLEX_TABLES_H
+#define SPRING_MOTION_INTERNAL_SIMPLEX_TABLES_H
+
+#include <array>
+
+namespace spring_motion {
+namespace internal {
+
+/// Local numbering of a simplex's edges. In a triangle, local edge k is the
+/// one opposite vertex k, so its facing angle is the angle at vertex k.
+template <int D>
+struct Simplex_tables;
+
+template <>
+struct Simplex_tables<2>
+{
+  static constexpr int vertices = 3;
+  static constexpr int edges = 3;
+  static constexpr int facets = 3;
+  static constexpr std::array<std::array<int, 2>, 3> edge{{{1, 2}, {0, 2}, {0, 1}}};
+  // facet k is opposite vertex k
+  static constexpr std::array<std::array<int, 2>, 3> facet{{{1, 2}, {0, 2}, {0, 1}}};
+};
+
+template <>
+struct Simplex_tables<3>
+{
+  static constexpr int vertices = 4;
+  static constexpr int edges = 6;
+  static constexpr int facets = 4;
+  static constexpr std::array<std::array<int, 2>, 6> edge{{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
+  // the two vertices not on edge k: the dihedral angle at edge k lies between
+  // the faces (edge, other[0]) and (edge, other[1])
+  static constexpr std::array<std::array<int, 2>, 6> other{{{2, 3}, {1, 3}, {1, 2}, {0, 3}, {0, 2}, {0, 1}}};
+  static constexpr std::array<std::array<int, 3>, 4> facet{{{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}}};
+};
+
+} // namespace internal
+} // namespace spring_motion
+
+#endif

@@ -1,0 +1,104 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_SKEWNESS_H
+#define SPRING_MOTION_SKEWNESS_H
+
+#include <spring_motion/Spring_network.h>
+#include <spring_motion/internal/angles.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace spring_motion {
+
+/// Q_e of Eq. 13: the angle of the equilateral element (2D: pi/3; 3D: the
+/// dihedral angle of the regular tetrahedron, arccos(1/3)).
+inline double equiangular_angle(int dimension)
+{
+  return dimension == 2 ? M_PI / 3 : std::acos(1.0 / 3.0);
+}
+
+/// Equiangle skewness (paper Eq. 13) from an element's angles:
+/// R = max((Q_max - Q_e)/(pi - Q_e), (Q_e - Q_min)/Q_e), clamped to [0, 1].
+/// 0 is the equilateral element, 1 a degenerate one.
+inline double equiangle_skewness_from_angles(const double* angles, std::size_t n, int dimension)
+{
+  const double qe = equiangular_angle(dimension);
+  const auto mm = std::minmax_element(angles, angles + n);
+  const double r = std::max((*mm.second - qe) / (M_PI - qe), (qe - *mm.first) / qe);
+  return std::min(1.0, std::max(0.0, r));
+}
+
+/// R of a triangle, from its interior angles.
+inline double equiangle_skewness(const std::array<double, 2>& p, const std::array<double, 2>& q,
+                                 const std::array<double, 2>& r)
+{
+  const auto a = internal::triangle_angles<2>(p, q, r);
+  return equiangle_skewness_from_angles(a.data(), 3, 2);
+}
+
+/// R of a tetrahedron, from its six dihedral angles.
+inline double equiangle_skewness(const std::array<double, 3>& p, const std::array<double, 3>& q,
+                                 const std::array<double, 3>& r, const std::array<double, 3>& s)
+{
+  const auto a = internal::dihedral_angles({p, q, r, s});
+  return equiangle_skewness_from_angles(a.data(), 6, 3);
+}
+
+/// Ten-bin (by default) histogram of R over a set of elements, as fractions,
+/// with the mean and the max. Bin b holds [b/B, (b+1)/B); R = 1 falls in the last.
+struct Skewness_histogram
+{
+  std::vector<double> fractions;
+  std::size_t count = 0;
+  double mean = 0;
+  double max = 0;
+};
+
+/// R of every element of the network at positions x.
+template <int D>
+std::vector<double> element_skewness(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
+                                     int threads = 0)
+{
+  const long m = long(net.number_of_elements());
+  std::vector<double> r(static_cast<std::size_t>(m));
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for(long t = 0; t < m; ++t) {
+    const auto& e = net.elements[std::size_t(t)];
+    if constexpr(D == 2)
+      r[std::size_t(t)] = equiangle_skewness(x[e[0]], x[e[1]], x[e[2]]);
+    else
+      r[std::size_t(t)] = equiangle_skewness(x[e[0]], x[e[1]], x[e[2]], x[e[3]]);
+  }
+  return r;
+}
+
+/// Histogram of the values r[t] for the elements t where select(t) is true.
+template <class Select>
+Skewness_histogram skewness_histogram(const std::vector<double>& r, Select select, std::size_t bins = 10)
+{
+  Skewness_histogram h;
+  h.fractions.assign(bins, 0.0);
+  double sum = 0;
+  for(std::size_t t = 0; t < r.size(); ++t) {
+    if(!select(t))
+      continue;
+    const std::size_t b = std::min(bins - 1, std::size_t(r[t] * double(bins)));
+    h.fractions[b] += 1;
+    sum += r[t];
+    h.max = std::max(h.max, r[t]);
+    ++h.count;
+  }
+  if(h.count > 0) {
+    for(double& f : h.fractions)
+      f /= double(h.count);
+    h.mean = sum / double(h.count);
+  }
+  return h;
+}
+
+} // namespace spring_motion
+
+#endif

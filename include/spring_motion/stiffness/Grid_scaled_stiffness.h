@@ -1,0 +1,48 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_STIFFNESS_GRID_SCALED_STIFFNESS_H
+#define SPRING_MOTION_STIFFNESS_GRID_SCALED_STIFFNESS_H
+
+#include <spring_motion/stiffness/Stiffness_model.h>
+
+#include <cmath>
+
+namespace spring_motion {
+
+/// The paper's grid-scaled springs (Eq. 5-6):
+/// `k = lambda (1/l^alpha + (sum_m 1/sin^2 theta_m)^beta)`, `lambda = l0 / l`,
+/// with facing angles in 2D and dihedral angles in 3D.
+///
+/// `l0` is the longest edge of the initial mesh, so lambda >= 1; being one
+/// constant for the whole mesh it does not change the motion. Eq. 5 is not
+/// unit-invariant (`1/l^alpha` scales with the length unit, the angle term
+/// does not): lengths are divided by `reference_length`, so a mesh in
+/// millimetres with reference_length = 1000 moves like the same mesh in metres.
+struct Grid_scaled_stiffness
+{
+  double alpha = 0;            ///< 0: the paper's value, 2 in 2D and 1 in 3D
+  double beta = 0;             ///< 0: the paper's value, 4 in 2D and 3 in 3D
+  double reference_length = 1; ///< L_ref
+
+  double alpha_for(int dimension) const { return alpha != 0 ? alpha : (dimension == 2 ? 2.0 : 1.0); }
+  double beta_for(int dimension) const { return beta != 0 ? beta : (dimension == 2 ? 4.0 : 3.0); }
+
+  Angle_kind angle_kind(int) const { return Angle_kind::element; }
+  double operator()(double length, const double* angles, std::size_t n, const Stiffness_context& ctx) const
+  {
+    double s = 0;
+    for(std::size_t m = 0; m < n; ++m)
+      s += internal::inverse_sin_squared(angles[m]);
+    const double l = length / reference_length;
+    const double lambda = ctx.longest_initial_edge / length;
+    return internal::cap_stiffness(lambda * (std::pow(l, -alpha_for(ctx.dimension)) +
+                                             std::pow(s, beta_for(ctx.dimension))));
+  }
+  Model_description description(int dimension) const
+  {
+    return {"grid_scaled", {{"alpha", alpha_for(dimension)}, {"beta", beta_for(dimension)}, {"reference_length", reference_length}}};
+  }
+};
+
+} // namespace spring_motion
+
+#endif

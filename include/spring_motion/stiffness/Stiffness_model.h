@@ -1,0 +1,100 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_STIFFNESS_STIFFNESS_MODEL_H
+#define SPRING_MOTION_STIFFNESS_STIFFNESS_MODEL_H
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace spring_motion {
+
+/// Which angles an edge stiffness model reads.
+enum class Angle_kind
+{
+  none,    ///< length only
+  element, ///< the element's own angle at the edge: the facing angle of each
+           ///< triangle (2D), the dihedral angle of each tetrahedron (3D)
+  face     ///< the angle facing the edge in each triangular face containing it
+           ///< (2D: the same as `element`; 3D: Zeng and Ethier's choice)
+};
+
+/// What a model may need besides the edge itself: the dimension and the
+/// longest edge of the initial mesh (the paper's `l0`).
+struct Stiffness_context
+{
+  int dimension = 2;
+  double longest_initial_edge = 1;
+};
+
+/// A model's name and numeric parameters, for reports.
+struct Model_description
+{
+  std::string name;
+  std::vector<std::pair<std::string, double>> parameters;
+};
+
+/// \name Concept `EdgeStiffnessModel`
+/// \code
+/// Angle_kind angle_kind(int dimension) const;
+/// double operator()(double length, const double* angles, std::size_t number_of_angles,
+///                   const Stiffness_context&) const;   // >= 0 and finite
+/// Model_description description(int dimension) const;               // optional
+/// \endcode
+/// Concept `ElementStiffnessModel` (torsional springs) refines it with
+/// \code
+/// // adds the element's (D+1)D x (D+1)D stiffness matrix (row-major) to K
+/// void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, double* K) const;
+/// \endcode
+/// and couples the coordinate components: the solver then works on D x D blocks.
+/// Scaling every stiffness of a model by one constant does not change the motion.
+
+namespace internal {
+
+/// Stiffness values of the built-in models are capped here: large enough to
+/// freeze a collapsing element in place, small enough that a vertex's sum of
+/// a hundred such springs stays finite.
+constexpr double max_stiffness = 1e250;
+
+/// 1/sin^2(theta), with sin^2 floored so an angle of exactly 0 or pi gives the
+/// cap instead of infinity. Such an angle means the element is already flat:
+/// the validity check rejects that state before its stiffness is ever used,
+/// so the floor only guards round-off.
+inline double inverse_sin_squared(double theta)
+{
+  const double s = std::sin(theta);
+  return 1.0 / std::max(s * s, 1e-200);
+}
+
+inline double cap_stiffness(double k) { return std::min(k, max_stiffness); }
+
+template <class Model, class = void>
+struct Has_description : std::false_type {};
+template <class Model>
+struct Has_description<Model, std::void_t<decltype(std::declval<const Model&>().description(2))>> : std::true_type {};
+
+template <class Model, int D, class = void>
+struct Is_element_model : std::false_type {};
+template <class Model, int D>
+struct Is_element_model<Model, D,
+                        std::void_t<decltype(std::declval<const Model&>().add_element_matrix(
+                            std::declval<const std::array<std::array<double, D>, D + 1>&>(),
+                            std::declval<double*>()))>> : std::true_type {};
+
+template <class Model>
+Model_description describe_model(const Model& model, int dimension)
+{
+  if constexpr(Has_description<Model>::value)
+    return model.description(dimension);
+  else
+    return Model_description{"custom", {}};
+}
+
+} // namespace internal
+} // namespace spring_motion
+
+#endif

@@ -6,6 +6,7 @@
 #include <spring_motion/Error.h>
 #include <spring_motion/Solver_options.h>
 #include <spring_motion/Spring_network.h>
+#include <spring_motion/internal/threads.h>
 #include <spring_motion/Vertex_role.h>
 #include <spring_motion/internal/angles.h>
 #include <spring_motion/internal/assemble.h>
@@ -194,7 +195,7 @@ public:
   {
     const long m = long(net_.number_of_elements());
     double mn = std::numeric_limits<double>::infinity();
-#pragma omp parallel for reduction(min : mn) schedule(static) num_threads(threads)
+#pragma omp parallel for reduction(min : mn) schedule(static) num_threads(internal::thread_count(threads))
     for(long t = 0; t < m; ++t)
       mn = std::min(mn, internal::signed_measure(internal::points_of(net_, positions_, std::size_t(t))) /
                             initial_measure_[std::size_t(t)]);

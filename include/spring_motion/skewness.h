@@ -3,6 +3,7 @@
 #define SPRING_MOTION_SKEWNESS_H
 
 #include <spring_motion/Spring_network.h>
+#include <spring_motion/internal/threads.h>
 #include <spring_motion/internal/angles.h>
 
 #include <algorithm>
@@ -64,7 +65,7 @@ std::vector<double> element_skewness(const Spring_network<D>& net, const std::ve
 {
   const long m = long(net.number_of_elements());
   std::vector<double> r(static_cast<std::size_t>(m));
-#pragma omp parallel for schedule(static) num_threads(threads)
+#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads))
   for(long t = 0; t < m; ++t) {
     const auto& e = net.elements[std::size_t(t)];
     if constexpr(D == 2)

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages SpringMotion needs to build, test and make
+# its figures. Uses sudo when not run as root.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends \
+  g++ make cmake \
+  libcgal-dev libboost-graph-dev libeigen3-dev catch2 \
+  python3 python3-numpy python3-matplotlib python3-meshio

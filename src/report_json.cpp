@@ -79,7 +79,9 @@ void write_report_json(const Deform_report& r, std::ostream& out)
       << ", \"center\": " << array(m.center.begin(), m.center.end())
       << ", \"axis\": " << array(m.axis.begin(), m.axis.end())
       << ", \"displacement\": " << array(m.displacement.begin(), m.displacement.end()) << " },\n";
-  out << "  \"solver\": { \"name\": " << quoted(r.solver_name)
+  out << "  \"solver\": { \"name\": "
+      << quoted(r.solver.method == Solver_method::sor ? "sor" : "conjugate_gradient")
+      << ", \"stopping\": " << quoted(r.solver.stopping == Stopping_rule::max_update ? "max_update" : "error_estimate")
       << ", \"relaxation_factor\": " << number(r.solver.relaxation_factor)
       << ", \"tolerance\": " << number(r.solver.tolerance) << ", \"max_iterations\": " << r.solver.max_iterations
       << ", \"warm_start\": " << (r.solver.warm_start ? "true" : "false") << " },\n";
@@ -89,7 +91,7 @@ void write_report_json(const Deform_report& r, std::ostream& out)
     out << (i ? ",\n    " : "\n    ") << "{ \"step\": " << s.step << ", \"fraction\": " << number(s.fraction)
         << ", \"angle_deg\": " << number(s.angle_deg) << ", \"iterations\": " << s.iterations
         << ", \"converged\": " << (s.converged ? "true" : "false") << ", \"max_update\": " << number(s.max_update)
-        << ", \"residual\": " << number(s.residual) << ", \"substeps\": " << s.substeps
+        << ", \"residual\": " << number(s.residual) << ", \"error_estimate\": " << number(s.error_estimate) << ", \"substeps\": " << s.substeps
         << ", \"inverted\": " << s.inverted << ", \"min_size_ratio\": " << number(s.min_size_ratio)
         << ", \"max_skewness_moving\": " << number(s.max_skewness_moving)
         << ", \"max_skewness_all\": " << number(s.max_skewness_all) << ", \"seconds\": { \"stiffness\": "

@@ -26,6 +26,7 @@ struct Step_report
   bool converged = true;      ///< every solve of the step met the tolerance
   double max_update = 0;      ///< largest last-sweep change over the step's solves
   double residual = 0;        ///< largest scaled residual over the step's solves
+  double error_estimate = 0;  ///< largest error estimate over the step's solves
   std::size_t substeps = 1;   ///< equal substeps the step took (1: none; a power of two)
   std::size_t inverted = 0;   ///< elements inverted by the rejected attempt (0 if accepted)
   double min_size_ratio = std::numeric_limits<double>::quiet_NaN();
@@ -54,7 +55,7 @@ struct Deform_report
   Motion_description motion;
   std::size_t number_of_steps = 0;
   Solver_options solver;
-  std::string solver_name = "sor";
+  
 
   std::vector<Step_report> steps; ///< accepted steps, then the rejected one if any
   bool completed = false;         ///< every step valid: the motion reached t = 1

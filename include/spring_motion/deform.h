@@ -276,12 +276,13 @@ private:
     s.seconds_stiffness += seconds_since(t0);
 
     t0 = Clock::now();
-    const Solve_report sr = internal::solve_sor(net_, system_, free_, delta, options.solver);
+    const Solve_report sr = internal::solve(net_, system_, free_, delta, options.solver);
     s.seconds_solve += seconds_since(t0);
     s.iterations += sr.iterations;
     s.converged = s.converged && sr.converged;
     s.max_update = std::max(s.max_update, sr.last_max_update);
     s.residual = std::max(s.residual, sr.residual);
+    s.error_estimate = std::max(s.error_estimate, sr.error_estimate);
 
     t0 = Clock::now();
     std::vector<Point> candidate = positions_;

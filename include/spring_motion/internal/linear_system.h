@@ -9,24 +9,25 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace spring_motion {
 namespace internal {
 
 /// The spring system of one step on the network's CSR pattern. Scalar
-/// systems (edge models) store one weight per adjacency entry and solve the
+/// systems (edge models) store one weight per adjacency entry and act on the
 /// D components independently; block systems (element models) store a D x D
 /// block per entry and per diagonal.
 template <int D>
 struct Linear_system
 {
   bool block = false;
-  std::vector<double> weight;   // scalar: k_ij per adjacency entry
+  std::vector<double> weight;   // scalar: k_ij per adjacency entry (the matrix entry is -k_ij)
   std::vector<double> diagonal; // scalar: sum_j k_ij per vertex
-  std::vector<double> off_blocks;       // block: D*D per adjacency entry, row-major
-  std::vector<double> diagonal_blocks;  // block: D*D per vertex
-  std::vector<double> diagonal_inverse; // block: D*D per vertex
+  std::vector<double> off_blocks;       // block: K_ij, D*D per adjacency entry, row-major
+  std::vector<double> diagonal_blocks;  // block: K_ii, D*D per vertex
+  std::vector<double> diagonal_inverse; // block: K_ii^{-1}, D*D per vertex
 };
 
 template <int D>
@@ -46,12 +47,16 @@ inline std::array<double, D * D> invert_block(const double* m)
   return r;
 }
 
-/// The new value of free vertex i from its neighbours (the exact local solve).
+template <int D>
+using Field = std::vector<typename Spring_network<D>::Point>;
+
+/// The value of vertex i that satisfies its own equation (K x)_i = rhs given
+/// its neighbours' values: the local solve of Gauss-Seidel.
 template <int D>
 inline std::array<double, D> local_solve(const Spring_network<D>& net, const Linear_system<D>& sys,
-                                         const std::vector<typename Spring_network<D>::Point>& x, Index i)
+                                         const Field<D>& x, Index i, const typename Spring_network<D>::Point& rhs = {})
 {
-  std::array<double, D> s{};
+  std::array<double, D> s = rhs;
   const Index b = net.adjacency_offsets[i], e = net.adjacency_offsets[i + 1];
   if(!sys.block) {
     for(Index p = b; p < e; ++p) {
@@ -80,59 +85,246 @@ inline std::array<double, D> local_solve(const Spring_network<D>& net, const Lin
   return out;
 }
 
+/// (K x)_i
+template <int D>
+inline std::array<double, D> apply_row(const Spring_network<D>& net, const Linear_system<D>& sys, const Field<D>& x,
+                                       Index i)
+{
+  std::array<double, D> y{};
+  const Index b = net.adjacency_offsets[i], e = net.adjacency_offsets[i + 1];
+  if(!sys.block) {
+    for(int c = 0; c < D; ++c)
+      y[c] = sys.diagonal[i] * x[i][c];
+    for(Index p = b; p < e; ++p) {
+      const double w = sys.weight[p];
+      const auto& xj = x[net.adjacency[p]];
+      for(int c = 0; c < D; ++c)
+        y[c] -= w * xj[c];
+    }
+    return y;
+  }
+  const double* Kd = &sys.diagonal_blocks[std::size_t(i) * D * D];
+  for(int r = 0; r < D; ++r)
+    for(int c = 0; c < D; ++c)
+      y[r] += Kd[r * D + c] * x[i][c];
+  for(Index p = b; p < e; ++p) {
+    const double* K = &sys.off_blocks[std::size_t(p) * D * D];
+    const auto& xj = x[net.adjacency[p]];
+    for(int r = 0; r < D; ++r)
+      for(int c = 0; c < D; ++c)
+        y[r] += K[r * D + c] * xj[c];
+  }
+  return y;
+}
+
+/// A max that a NaN sticks to, so a NaN can never pass for convergence.
+inline void sticky_max(double& m, double v)
+{
+  if(!(v <= m))
+    m = v;
+}
+
 /// max over free vertices and components of |x_i - local_solve(i)|.
 template <int D>
-double scaled_residual(const Spring_network<D>& net, const Linear_system<D>& sys,
-                       const std::vector<typename Spring_network<D>::Point>& x, const std::vector<Index>& free_vertices)
+double scaled_residual(const Spring_network<D>& net, const Linear_system<D>& sys, const Field<D>& x,
+                       const std::vector<Index>& free_vertices)
 {
   double r = 0;
   for(Index i : free_vertices) {
     const auto y = local_solve(net, sys, x, i);
-    for(int c = 0; c < D; ++c) {
-      const double d = std::abs(x[i][c] - y[c]);
-      if(!(d <= r))
-        r = d;
-    }
+    for(int c = 0; c < D; ++c)
+      sticky_max(r, std::abs(x[i][c] - y[c]));
   }
   return r;
+}
+
+/// The stopping test of both solvers, from the sequence of max changes.
+class Stopping_test
+{
+public:
+  explicit Stopping_test(const Solver_options& o) : rule_(o.stopping), tol_(o.tolerance) {}
+
+  /// Feeds the max change of one iteration; true when the solve may stop.
+  bool done(double update)
+  {
+    history_[count_++ % window_] = update;
+    last_ = update;
+    if(rule_ == Stopping_rule::max_update) {
+      estimate_ = update;
+      return update <= tol_;
+    }
+    if(update == 0) {
+      estimate_ = 0;
+      return true;
+    }
+    if(count_ <= window_) {
+      estimate_ = std::numeric_limits<double>::infinity();
+      return false;
+    }
+    // the change `window_` iterations ago sits where this one was just written
+    // before overwriting; we keep it in `oldest_`
+    const double q = std::pow(update / oldest_, 1.0 / double(window_));
+    estimate_ = q < 1 ? update * q / (1 - q) : std::numeric_limits<double>::infinity();
+    return estimate_ <= tol_ && update <= tol_;
+  }
+  void before_next() { oldest_ = history_[count_ % window_]; }
+  double estimate() const { return estimate_; }
+  double last() const { return last_; }
+
+private:
+  static constexpr std::size_t window_ = 4;
+  Stopping_rule rule_;
+  double tol_;
+  std::array<double, window_> history_{};
+  std::size_t count_ = 0;
+  double oldest_ = 0, last_ = 0, estimate_ = std::numeric_limits<double>::infinity();
+};
+
+inline void check_options(const Solver_options& o)
+{
+  SPRING_MOTION_CHECK(o.relaxation_factor > 0 && o.relaxation_factor < 2,
+                      "SOR relaxation factor must lie in (0, 2), got " << o.relaxation_factor);
+  SPRING_MOTION_CHECK(o.tolerance > 0 && std::isfinite(o.tolerance),
+                      "solver tolerance must be positive and finite, got " << o.tolerance);
 }
 
 /// Successive over-relaxation in the order of `free_vertices`; the entries
 /// of x at constrained vertices are the prescribed increments and stay put.
 template <int D>
 Solve_report solve_sor(const Spring_network<D>& net, const Linear_system<D>& sys,
-                       const std::vector<Index>& free_vertices, std::vector<typename Spring_network<D>::Point>& x,
-                       const Solver_options& options)
+                       const std::vector<Index>& free_vertices, Field<D>& x, const Solver_options& options)
 {
-  SPRING_MOTION_CHECK(options.relaxation_factor > 0 && options.relaxation_factor < 2,
-                      "SOR relaxation factor must lie in (0, 2), got " << options.relaxation_factor);
-  SPRING_MOTION_CHECK(options.tolerance > 0, "solver tolerance must be positive, got " << options.tolerance);
+  check_options(options);
   const double omega = options.relaxation_factor;
   Solve_report report;
+  Stopping_test stop(options);
   while(report.iterations < options.max_iterations) {
+    stop.before_next();
     double max_update = 0;
     for(Index i : free_vertices) {
       const auto y = local_solve(net, sys, x, i);
       for(int c = 0; c < D; ++c) {
         const double nv = (1 - omega) * x[i][c] + omega * y[c];
-        const double change = std::abs(nv - x[i][c]);
-        if(!(change <= max_update)) // NaN-sticky max: a NaN must never pass for convergence
-          max_update = change;
+        sticky_max(max_update, std::abs(nv - x[i][c]));
         x[i][c] = nv;
       }
     }
     ++report.iterations;
     SPRING_MOTION_CHECK(std::isfinite(max_update),
                         "the solver produced a non-finite value at sweep " << report.iterations);
-    report.last_max_update = max_update;
-    if(max_update <= options.tolerance) {
+    if(stop.done(max_update)) {
       report.converged = true;
       break;
     }
   }
+  report.last_max_update = stop.last();
+  report.error_estimate = stop.estimate();
   report.residual = scaled_residual(net, sys, x, free_vertices);
   SPRING_MOTION_CHECK(std::isfinite(report.residual), "the solver produced a non-finite value");
   return report;
+}
+
+/// z = M^{-1} r with M the symmetric Gauss-Seidel splitting of K restricted
+/// to the free vertices: a forward then a backward Gauss-Seidel sweep on
+/// K z = r from z = 0 (constrained entries of z stay 0).
+template <int D>
+void symmetric_gauss_seidel(const Spring_network<D>& net, const Linear_system<D>& sys,
+                            const std::vector<Index>& free_vertices, const Field<D>& r, Field<D>& z)
+{
+  for(Index i : free_vertices)
+    z[i] = {};
+  for(Index i : free_vertices)
+    z[i] = local_solve(net, sys, z, i, r[i]);
+  for(auto it = free_vertices.rbegin(); it != free_vertices.rend(); ++it)
+    z[*it] = local_solve(net, sys, z, *it, r[*it]);
+}
+
+/// Preconditioned conjugate gradients on the free vertices, the constrained
+/// entries of x being the prescribed increments. The system restricted to
+/// the free vertices is symmetric positive definite when each free component
+/// reaches a constrained vertex, which the deformer checks beforehand.
+template <int D>
+Solve_report solve_conjugate_gradient(const Spring_network<D>& net, const Linear_system<D>& sys,
+                                      const std::vector<Index>& free_vertices, Field<D>& x,
+                                      const Solver_options& options)
+{
+  check_options(options);
+  Solve_report report;
+  const std::size_t n = x.size();
+  Field<D> r(n, std::array<double, D>{}), z(n, std::array<double, D>{}), p(n, std::array<double, D>{}),
+      q(n, std::array<double, D>{});
+  auto dot = [&](const Field<D>& a, const Field<D>& b) {
+    double s = 0;
+    for(Index i : free_vertices)
+      for(int c = 0; c < D; ++c)
+        s += a[i][c] * b[i][c];
+    return s;
+  };
+  double r_max = 0;
+  for(Index i : free_vertices) {
+    const auto y = apply_row(net, sys, x, i);
+    for(int c = 0; c < D; ++c) {
+      r[i][c] = -y[c];
+      sticky_max(r_max, std::abs(r[i][c]));
+    }
+  }
+  SPRING_MOTION_CHECK(std::isfinite(r_max), "the solver's initial residual is not finite");
+  Stopping_test stop(options);
+  if(r_max > 0 && !free_vertices.empty()) {
+    symmetric_gauss_seidel(net, sys, free_vertices, r, z);
+    for(Index i : free_vertices)
+      p[i] = z[i];
+    double rz = dot(r, z);
+    while(report.iterations < options.max_iterations) {
+      stop.before_next();
+      for(Index i : free_vertices)
+        q[i] = apply_row(net, sys, p, i);
+      const double pq = dot(p, q);
+      if(!(pq > 0)) // p = 0: the residual vanished exactly
+        break;
+      const double alpha = rz / pq;
+      double update = 0;
+      for(Index i : free_vertices)
+        for(int c = 0; c < D; ++c) {
+          x[i][c] += alpha * p[i][c];
+          r[i][c] -= alpha * q[i][c];
+          sticky_max(update, std::abs(alpha * p[i][c]));
+        }
+      ++report.iterations;
+      SPRING_MOTION_CHECK(std::isfinite(update),
+                          "the solver produced a non-finite value at iteration " << report.iterations);
+      if(stop.done(update)) {
+        report.converged = true;
+        break;
+      }
+      symmetric_gauss_seidel(net, sys, free_vertices, r, z);
+      const double rz_new = dot(r, z);
+      const double beta = rz_new / rz;
+      rz = rz_new;
+      for(Index i : free_vertices)
+        for(int c = 0; c < D; ++c)
+          p[i][c] = z[i][c] + beta * p[i][c];
+    }
+  }
+  report.residual = scaled_residual(net, sys, x, free_vertices);
+  SPRING_MOTION_CHECK(std::isfinite(report.residual), "the solver produced a non-finite value");
+  if(!report.converged && report.iterations < options.max_iterations) {
+    // stopped on an exactly vanishing residual, or with nothing to solve
+    report.converged = report.residual == 0 || free_vertices.empty() || r_max == 0;
+  }
+  report.last_max_update = stop.last();
+  report.error_estimate = report.converged && report.iterations == 0 ? 0 : stop.estimate();
+  return report;
+}
+
+/// Solves with the method the options select.
+template <int D>
+Solve_report solve(const Spring_network<D>& net, const Linear_system<D>& sys, const std::vector<Index>& free_vertices,
+                   Field<D>& x, const Solver_options& options)
+{
+  if(options.method == Solver_method::sor)
+    return solve_sor(net, sys, free_vertices, x, options);
+  return solve_conjugate_gradient(net, sys, free_vertices, x, options);
 }
 
 } // namespace internal

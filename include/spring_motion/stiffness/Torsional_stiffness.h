@@ -2,6 +2,7 @@
 #ifndef SPRING_MOTION_STIFFNESS_TORSIONAL_STIFFNESS_H
 #define SPRING_MOTION_STIFFNESS_TORSIONAL_STIFFNESS_H
 
+#include <spring_motion/Error.h>
 #include <spring_motion/internal/angles.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
 
@@ -24,7 +25,12 @@ struct Torsional_stiffness
   double lineal_exponent = 1.0;
   double torsion_scale = 1.0; ///< multiplies every C_i
 
-  Angle_kind angle_kind(int) const { return Angle_kind::none; }
+  Angle_kind angle_kind(int dimension) const
+  {
+    // without a 3D element matrix the model would silently be lineal springs
+    SPRING_MOTION_CHECK(dimension == 2, "the torsional model is implemented in 2D only");
+    return Angle_kind::none;
+  }
   double operator()(double length, const double*, std::size_t, const Stiffness_context&) const
   {
     return internal::cap_stiffness(std::pow(length, -lineal_exponent));

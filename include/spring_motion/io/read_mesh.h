@@ -1,0 +1,79 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_IO_READ_MESH_H
+#define SPRING_MOTION_IO_READ_MESH_H
+
+#include <spring_motion/Indexed_mesh.h>
+#include <spring_motion/Input_error.h>
+
+#include <iosfwd>
+#include <string>
+
+namespace spring_motion {
+
+/// What a mesh file holds: a 2D or a 3D mesh, decided by the file's content.
+/// Only the member matching `dimension` is filled; the other one is empty.
+struct Mesh_file
+{
+  int dimension = 0;   // 2 or 3
+  Indexed_mesh<2> mesh_2;
+  Indexed_mesh<3> mesh_3;
+};
+
+/// Reads a mesh file, choosing the format by extension (case-insensitive):
+///  - `.mesh`: Medit ASCII (see `read_medit()`),
+///  - `.msh`:  Gmsh ASCII, format 2.2 or 4.1 (see `read_gmsh()`).
+///
+/// How the dimension is decided, for both formats:
+///  - tetrahedra present: a 3D mesh; triangles are its labelled boundary facets;
+///  - otherwise triangles are the elements of a 2D mesh, and edges (lines)
+///    its labelled boundary facets; every vertex must then have z == 0, since
+///    surface meshes in 3D are not supported;
+///  - neither: an error.
+/// Vertex indices become 0-based; unused vertices are kept, in file order.
+/// Elements of an unsupported kind in the mesh's own dimension (quadrilaterals
+/// in 2D; hexahedra, prisms, pyramids in 3D; any higher-order element) are an
+/// error rather than silently dropped, which would leave a hole in the mesh.
+///
+/// \throws Input_error for every problem with the file (missing, unreadable,
+///         unknown extension, malformed), naming the file and the line.
+Mesh_file read_mesh(const std::string& path);
+
+/// Reads a Medit ASCII mesh (the `.mesh` format of Medit, MMG, TetGen, CGAL).
+///
+/// Sections used: `MeshVersionFormatted`, `Dimension` (2 or 3), `Vertices`
+/// (coordinates + reference, the reference is ignored), `Triangles`,
+/// `Tetrahedra`, `Edges` (vertex indices + reference), `End`. Element
+/// references become `element_labels`; the references of `Edges` (2D) or
+/// `Triangles` (3D, when there are tetrahedra) become `boundary_labels`.
+/// A `Dimension 3` file with triangles only and all z == 0 is read as 2D.
+/// Comments start with `#`. Other sections of known layout (`Corners`,
+/// `Ridges`, `Required*`, `Normals`, `Tangents`, ...) are skipped by their
+/// count; sections of unknown layout are skipped up to the next keyword.
+/// `Vertices` must come before the element sections (every known writer
+/// does so), which lets each index be checked where it is read.
+///
+/// \param name_for_errors the file name used in error messages.
+/// \throws Input_error
+Mesh_file read_medit(std::istream& in, const std::string& name_for_errors);
+
+/// Reads a Gmsh ASCII mesh, format 2.2 or 4.1 (from `$MeshFormat`).
+///
+/// Element types used: 1 (line), 2 (triangle), 4 (tetrahedron); 15 (point)
+/// is read and dropped; other types are skipped unless they are elements of
+/// the mesh's own dimension (see `read_mesh()`). An element's label is its
+/// physical group (the first one if its entity is in several; 0 if none).
+/// In format 2.2 an element in several physical groups is written once per
+/// group: the copies are merged, keeping the first label. Node tags may be
+/// any positive numbers; they are renumbered 0, 1, ... in file order.
+/// `label_names` holds the `$PhysicalNames` of the elements' and boundary
+/// facets' dimensions; if both dimensions use the same number, the boundary
+/// facets' name wins (boundary conditions are set by boundary labels).
+/// Unknown sections (`$NodeData`, `$Periodic`, `$Comments`, ...) are skipped.
+///
+/// \param name_for_errors the file name used in error messages.
+/// \throws Input_error, also for binary files and formats other than 2.x, 4.1.
+Mesh_file read_gmsh(std::istream& in, const std::string& name_for_errors);
+
+} // namespace spring_motion
+
+#endif

@@ -1,0 +1,106 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_IO_WRITE_MESH_H
+#define SPRING_MOTION_IO_WRITE_MESH_H
+
+#include <spring_motion/Indexed_mesh.h>
+#include <spring_motion/Input_error.h>
+#include <spring_motion/io/read_mesh.h>
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace spring_motion {
+
+/// A named field to write with a mesh: `values` holds `components` numbers
+/// per vertex (point data) or per element (cell data), interleaved:
+/// e.g. {"displacement", 3, {dx0, dy0, dz0, dx1, ...}}, {"skewness", 1, {...}}.
+struct Data_array
+{
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+};
+
+// Every writer checks the mesh first (vertex indices in range, one label per
+// element and per boundary facet, or none at all, meaning 0) and the data
+// arrays (non-empty name, 1 to 9 components, the right number of values),
+// and throws std::invalid_argument otherwise: those are programming errors.
+//
+// The writers taking a path write a temporary file in the target's directory
+// and rename it over the target when complete, so that a failed or
+// interrupted run never leaves a partial file behind. Problems with the path
+// (missing directory, no permission, disk full) throw `Input_error` naming it.
+//
+// The writers taking a stream leave the stream's state for the caller to check.
+
+/// Medit ASCII: `Vertices`, then `Triangles` + `Edges` (2D) or `Tetrahedra` +
+/// `Triangles` (3D) with the labels as references, and `label_names` as
+/// comments. Coordinates are written in the shortest form that reads back to
+/// the same double, so `read_medit()` returns the same mesh bit for bit
+/// (label names aside, which Medit cannot hold).
+template <int D>
+void write_medit(const Indexed_mesh<D>& mesh, std::ostream& out);
+template <int D>
+void write_medit(const Indexed_mesh<D>& mesh, const std::string& path);
+
+/// VTK XML UnstructuredGrid, ASCII (ParaView, VisIt): the elements as
+/// VTK_TRIANGLE (5) or VTK_TETRA (10) cells, points always with 3
+/// components (z = 0 in 2D), and the given point and cell data as Float64
+/// arrays. Boundary facets are not written. Non-finite values are written as
+/// "nan", "inf", "-inf" (VTK 9.1 reads them, though "-inf" as +inf).
+template <int D>
+void write_vtu(const Indexed_mesh<D>& mesh, std::ostream& out,
+               const std::vector<Data_array>& point_data = {},
+               const std::vector<Data_array>& cell_data = {});
+template <int D>
+void write_vtu(const Indexed_mesh<D>& mesh, const std::string& path,
+               const std::vector<Data_array>& point_data = {},
+               const std::vector<Data_array>& cell_data = {});
+
+/// Writes by extension (case-insensitive): `.vtu` (with the data arrays) or
+/// `.mesh` (the data arrays are not written: Medit has no place for them).
+/// \throws Input_error for any other extension, naming the expected ones.
+template <int D>
+void write_mesh(const std::string& path, const Indexed_mesh<D>& mesh,
+                const std::vector<Data_array>& point_data = {},
+                const std::vector<Data_array>& cell_data = {});
+/// The mesh of `file` that matches its `dimension`.
+void write_mesh(const std::string& path, const Mesh_file& file,
+                const std::vector<Data_array>& point_data = {},
+                const std::vector<Data_array>& cell_data = {});
+
+/// One time step of a ParaView collection: `file` is the .vtu as the .pvd
+/// refers to it (ParaView resolves relative names from the .pvd's directory).
+struct Pvd_entry
+{
+  double time = 0;
+  std::string file;
+};
+
+/// Writes a ParaView collection (.pvd) listing the files with their times.
+void write_pvd(const std::string& path, const std::vector<Pvd_entry>& entries);
+
+/// Builds a .pvd while a run writes its time steps: each `add()` rewrites the
+/// whole collection, so that the .pvd on disk is valid whenever the run stops.
+class Pvd_writer
+{
+public:
+  explicit Pvd_writer(std::string path);
+
+  /// Adds a step. `vtu_path` is given as the program wrote it (relative to
+  /// the working directory, or absolute); it is stored relative to the .pvd's
+  /// directory when both are in the same place, so the pair can be moved.
+  void add(double time, const std::string& vtu_path);
+
+  const std::string& path() const { return path_; }
+  const std::vector<Pvd_entry>& entries() const { return entries_; }
+
+private:
+  std::string path_;
+  std::vector<Pvd_entry> entries_;
+};
+
+} // namespace spring_motion
+
+#endif

@@ -1,0 +1,122 @@
+// Copyright (c) 2026 SpringMotion developers.
+// Private to src/io: the tokenizer and the number parsing shared by the
+// Medit and Gmsh readers. Not installed.
+#ifndef SPRING_MOTION_SRC_IO_TOKEN_READER_H
+#define SPRING_MOTION_SRC_IO_TOKEN_READER_H
+
+#include <spring_motion/Input_error.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <istream>
+#include <string>
+#include <string_view>
+
+namespace spring_motion {
+namespace io_internal {
+
+/// Where a reader is inside a counted section, so that a truncated file or a
+/// wrong count is reported as "section X: expected N entries, read M".
+struct Section_progress
+{
+  std::string section;     // as written in the file: "Vertices", "$Nodes"
+  std::string entries;     // plural noun: "vertices", "nodes"
+  std::size_t expected = 0;
+  std::size_t read = 0;
+};
+
+/// Splits a text stream into whitespace-separated tokens while keeping the
+/// line number of each one, which every error message needs. Lines are read
+/// one at a time, so memory stays bounded by the longest line.
+class Token_reader
+{
+public:
+  Token_reader(std::istream& in, std::string file_name);
+
+  /// Characters from `c` to the end of the line are ignored (Medit's '#').
+  void set_comment_character(char c) { comment_ = c; }
+
+  /// The next token, or false at the end of the input. The view stays valid
+  /// until the next call that moves the reader.
+  bool next(std::string_view& token);
+  /// Makes the token just returned by `next()` the next one again.
+  void put_back();
+  /// Drops what is left of the current line (for entries whose length the
+  /// reader cannot know, such as elements of an unknown Gmsh type).
+  void skip_rest_of_line();
+  /// What is left of the current line, consumed (Gmsh's quoted names).
+  std::string_view rest_of_line();
+
+  /// The line of the token last returned; at the end of input, the last line.
+  std::size_t line() const { return line_number_; }
+  const std::string& file_name() const { return file_name_; }
+
+  [[noreturn]] void fail(const std::string& message) const;
+  [[noreturn]] void fail_at(std::size_t line, const std::string& message) const;
+
+  /// Counted section being read, for the messages of `expect_*()`; null when
+  /// none. The object must outlive its use (see `Progress_scope`).
+  void set_progress(Section_progress* progress) { progress_ = progress; }
+
+  /// The next token, or an "unexpected end of file" error naming `what`.
+  std::string_view expect_token(const char* what);
+  double expect_double(const char* what);
+  std::int64_t expect_integer(const char* what);
+  /// A count of entries: an integer in [0, max].
+  std::size_t expect_count(const char* what, std::size_t max);
+
+  /// How many entries of at least `min_bytes_per_entry` bytes the rest of the
+  /// input can hold, at most `count`: what a reader may reserve() without
+  /// letting an absurd count in a hostile file allocate gigabytes.
+  std::size_t reserve_limit(std::size_t count, std::size_t min_bytes_per_entry) const;
+
+  /// A token made safe to quote in a one-line message.
+  static std::string quote(std::string_view token);
+
+private:
+  bool read_line();
+  [[noreturn]] void fail_unexpected(std::string_view token, const char* what,
+                                    const std::string& problem = std::string()) const;
+  std::string progress_suffix() const;
+
+  std::istream& in_;
+  std::string file_name_;
+  std::string current_line_;
+  std::size_t position_ = 0;
+  std::size_t token_start_ = 0;
+  std::size_t line_number_ = 0;
+  std::size_t bytes_available_ = 0; // 0 when the stream cannot tell its size
+  bool size_known_ = false;
+  char comment_ = '\0';
+  Section_progress* progress_ = nullptr;
+};
+
+/// Sets a reader's progress for the lifetime of the scope.
+class Progress_scope
+{
+public:
+  Progress_scope(Token_reader& reader, Section_progress& progress) : reader_(reader)
+  {
+    reader_.set_progress(&progress);
+  }
+  ~Progress_scope() { reader_.set_progress(nullptr); }
+  Progress_scope(const Progress_scope&) = delete;
+  Progress_scope& operator=(const Progress_scope&) = delete;
+
+private:
+  Token_reader& reader_;
+};
+
+/// Parses a whole token as a double; false if it is not one. Non-finite
+/// values ("nan", "inf", overflow) parse, the caller rejects them.
+bool parse_double(std::string_view token, double& value);
+/// Parses a whole token as a base-10 integer; false if not one or too large.
+bool parse_integer(std::string_view token, std::int64_t& value);
+
+/// ASCII case-insensitive equality, for Medit keywords and file extensions.
+bool equal_ignoring_case(std::string_view a, std::string_view b);
+
+} // namespace io_internal
+} // namespace spring_motion
+
+#endif

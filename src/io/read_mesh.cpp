@@ -1,0 +1,34 @@
+// Copyright (c) 2026 SpringMotion developers.
+#include <spring_motion/io/read_mesh.h>
+
+#include "Token_reader.h"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <system_error>
+
+namespace spring_motion {
+
+Mesh_file read_mesh(const std::string& path)
+{
+  const std::string extension = std::filesystem::path(path).extension().string();
+  const bool is_medit = io_internal::equal_ignoring_case(extension, ".mesh");
+  const bool is_gmsh = io_internal::equal_ignoring_case(extension, ".msh");
+  if(!is_medit && !is_gmsh)
+    throw Input_error(path, 0, (extension.empty() ? std::string("no file extension")
+                                                  : "unknown mesh file extension '" + extension + "'")
+                                 + ": expected .mesh (Medit ASCII) or .msh (Gmsh ASCII 2.2 or 4.1)");
+
+  std::error_code error;
+  // A directory opens as a stream on Linux and then reads as empty.
+  if(std::filesystem::is_directory(path, error))
+    throw Input_error(path, 0, "cannot read a directory: expected a mesh file");
+  std::ifstream in(path, std::ios::binary);
+  if(!in)
+    throw Input_error(path, 0, std::string("cannot open file: ") + std::strerror(errno));
+  return is_medit ? read_medit(in, path) : read_gmsh(in, path);
+}
+
+} // namespace spring_motion

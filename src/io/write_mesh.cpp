@@ -1,0 +1,421 @@
+// Copyright (c) 2026 SpringMotion developers.
+#include <spring_motion/io/write_mesh.h>
+
+#include "Token_reader.h"
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <ostream>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+namespace spring_motion {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Formats numbers with std::to_chars: locale-independent, and for doubles
+// the shortest text that parses back to the same value, which is what makes
+// write_medit -> read_medit exact. Output is buffered in large chunks.
+class Text_writer
+{
+public:
+  explicit Text_writer(std::ostream& out) : out_(out) { buffer_.reserve(capacity + 64); }
+  ~Text_writer() { flush(); }
+  Text_writer(const Text_writer&) = delete;
+  Text_writer& operator=(const Text_writer&) = delete;
+
+  Text_writer& operator<<(double value)
+  {
+    char text[64];
+    const std::to_chars_result result = std::to_chars(text, text + sizeof(text), value);
+    return append(text, result.ptr);
+  }
+  Text_writer& operator<<(std::int64_t value)
+  {
+    char text[32];
+    const std::to_chars_result result = std::to_chars(text, text + sizeof(text), value);
+    return append(text, result.ptr);
+  }
+  Text_writer& operator<<(std::uint32_t value) { return *this << static_cast<std::int64_t>(value); }
+  Text_writer& operator<<(int value) { return *this << static_cast<std::int64_t>(value); }
+  Text_writer& operator<<(std::size_t value) { return *this << static_cast<std::int64_t>(value); }
+  Text_writer& operator<<(char c)
+  {
+    buffer_.push_back(c);
+    return maybe_flush();
+  }
+  Text_writer& operator<<(const std::string& text)
+  {
+    buffer_ += text;
+    return maybe_flush();
+  }
+  Text_writer& operator<<(const char* text)
+  {
+    buffer_ += text;
+    return maybe_flush();
+  }
+
+  void flush()
+  {
+    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    buffer_.clear();
+  }
+
+private:
+  static constexpr std::size_t capacity = std::size_t(1) << 16;
+
+  Text_writer& append(const char* first, const char* last)
+  {
+    buffer_.append(first, last);
+    return maybe_flush();
+  }
+  Text_writer& maybe_flush()
+  {
+    if(buffer_.size() >= capacity)
+      flush();
+    return *this;
+  }
+
+  std::ostream& out_;
+  std::string buffer_;
+};
+
+template <int D>
+void check_mesh(const Indexed_mesh<D>& mesh)
+{
+  const std::size_t n = mesh.points.size();
+  const auto check_indices = [n](const auto& simplices, const char* what) {
+    for(std::size_t i = 0; i < simplices.size(); ++i)
+      for(std::uint32_t v : simplices[i])
+        if(v >= n)
+          throw std::invalid_argument(std::string("write mesh: ") + what + " " + std::to_string(i)
+                                      + " has vertex index " + std::to_string(v) + ", expected less than "
+                                      + std::to_string(n));
+  };
+  check_indices(mesh.elements, "element");
+  check_indices(mesh.boundary_facets, "boundary facet");
+  if(!mesh.element_labels.empty() && mesh.element_labels.size() != mesh.elements.size())
+    throw std::invalid_argument("write mesh: " + std::to_string(mesh.element_labels.size())
+                                + " element labels for " + std::to_string(mesh.elements.size())
+                                + " elements, expected one per element or none");
+  if(!mesh.boundary_labels.empty() && mesh.boundary_labels.size() != mesh.boundary_facets.size())
+    throw std::invalid_argument("write mesh: " + std::to_string(mesh.boundary_labels.size())
+                                + " boundary labels for " + std::to_string(mesh.boundary_facets.size())
+                                + " boundary facets, expected one per facet or none");
+}
+
+void check_data(const std::vector<Data_array>& arrays, std::size_t count, const char* kind)
+{
+  for(const Data_array& a : arrays) {
+    if(a.name.empty())
+      throw std::invalid_argument(std::string("write_vtu: a ") + kind + " data array has no name");
+    if(a.components < 1 || a.components > 9)
+      throw std::invalid_argument("write_vtu: " + std::string(kind) + " data '" + a.name + "' has "
+                                  + std::to_string(a.components) + " components, expected 1 to 9");
+    if(a.values.size() != count * static_cast<std::size_t>(a.components))
+      throw std::invalid_argument("write_vtu: " + std::string(kind) + " data '" + a.name + "' has "
+                                  + std::to_string(a.values.size()) + " values, expected "
+                                  + std::to_string(count) + " x " + std::to_string(a.components));
+  }
+}
+
+std::string xml_escape(const std::string& text)
+{
+  std::string escaped;
+  for(char c : text) {
+    switch(c) {
+    case '&': escaped += "&amp;"; break;
+    case '<': escaped += "&lt;"; break;
+    case '>': escaped += "&gt;"; break;
+    case '"': escaped += "&quot;"; break;
+    case '\'': escaped += "&apos;"; break;
+    case '\n': case '\r': case '\t': escaped += ' '; break;
+    default: escaped += c; break;
+    }
+  }
+  return escaped;
+}
+
+bool has_extension(const std::string& path, const char* extension)
+{
+  return io_internal::equal_ignoring_case(fs::path(path).extension().string(), extension);
+}
+
+std::string temporary_name(const fs::path& target)
+{
+  // Unique enough across threads and processes writing the same directory;
+  // the leading dot keeps the file out of sight while it is being written.
+  static std::atomic<std::uint64_t> counter{0};
+  static const std::uint64_t seed = [] {
+    std::random_device device;
+    return (std::uint64_t(device()) << 32) ^ device()
+           ^ static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+  }();
+  const std::uint64_t id = seed + 0x9e3779b97f4a7c15ULL * ++counter;
+  char hex[17];
+  std::snprintf(hex, sizeof(hex), "%016llx", static_cast<unsigned long long>(id));
+  return "." + target.filename().string() + ".tmp-" + hex;
+}
+
+// Writes to a temporary file beside `path`, then renames it over `path`:
+// a failure at any point leaves the previous file (or none) untouched.
+void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write)
+{
+  const fs::path target(path);
+  if(target.filename().empty())
+    throw Input_error(path, 0, "expected a file name, found a directory path");
+  const fs::path temporary = target.parent_path() / temporary_name(target);
+
+  std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+  if(!out) {
+    const std::string reason = std::strerror(errno);
+    const std::string directory = target.parent_path().empty() ? "." : target.parent_path().string();
+    throw Input_error(path, 0, "cannot create a file in directory '" + directory + "': " + reason);
+  }
+  std::error_code ignored;
+  try {
+    write(out);
+    out.flush();
+    if(!out)
+      throw Input_error(path, 0, std::string("write failed: ") + std::strerror(errno));
+    out.close();
+    if(out.fail())
+      throw Input_error(path, 0, std::string("write failed on close: ") + std::strerror(errno));
+  } catch(...) {
+    out.close();
+    fs::remove(temporary, ignored);
+    throw;
+  }
+  std::error_code error;
+  fs::rename(temporary, target, error);
+  if(error) {
+    fs::remove(temporary, ignored);
+    throw Input_error(path, 0, "cannot replace the file: " + error.message());
+  }
+}
+
+void write_vtu_data(Text_writer& w, const std::vector<Data_array>& arrays)
+{
+  for(const Data_array& a : arrays) {
+    w << "        <DataArray type=\"Float64\" Name=\"" << xml_escape(a.name) << "\" NumberOfComponents=\""
+      << a.components << "\" format=\"ascii\">\n";
+    for(std::size_t i = 0; i < a.values.size(); i += static_cast<std::size_t>(a.components)) {
+      w << "         ";
+      for(int c = 0; c < a.components; ++c)
+        w << ' ' << a.values[i + static_cast<std::size_t>(c)];
+      w << '\n';
+    }
+    w << "        </DataArray>\n";
+  }
+}
+
+} // namespace
+
+template <int D>
+void write_medit(const Indexed_mesh<D>& mesh, std::ostream& out)
+{
+  check_mesh(mesh);
+  Text_writer w(out);
+  w << "MeshVersionFormatted 2\n\nDimension " << D << "\n";
+  for(const auto& [label, name] : mesh.label_names) {
+    std::string line = name;
+    for(char& c : line)
+      if(c == '\n' || c == '\r')
+        c = ' ';
+    w << "# label " << label << ": " << line << '\n';
+  }
+
+  w << "\nVertices\n" << mesh.points.size() << '\n';
+  for(const auto& p : mesh.points) {
+    for(int k = 0; k < D; ++k)
+      w << p[static_cast<std::size_t>(k)] << ' ';
+    w << "0\n";
+  }
+
+  const auto write_simplices = [&w](const char* keyword, const auto& simplices, const std::vector<int>& labels) {
+    w << '\n' << keyword << '\n' << simplices.size() << '\n';
+    for(std::size_t i = 0; i < simplices.size(); ++i) {
+      for(std::uint32_t v : simplices[i])
+        w << (v + std::int64_t(1)) << ' ';
+      w << (labels.empty() ? 0 : labels[i]) << '\n';
+    }
+  };
+  write_simplices(D == 2 ? "Triangles" : "Tetrahedra", mesh.elements, mesh.element_labels);
+  if(!mesh.boundary_facets.empty())
+    write_simplices(D == 2 ? "Edges" : "Triangles", mesh.boundary_facets, mesh.boundary_labels);
+  w << "\nEnd\n";
+}
+
+template <int D>
+void write_medit(const Indexed_mesh<D>& mesh, const std::string& path)
+{
+  check_mesh(mesh);
+  write_atomically(path, [&mesh](std::ostream& out) { write_medit(mesh, out); });
+}
+
+template <int D>
+void write_vtu(const Indexed_mesh<D>& mesh, std::ostream& out, const std::vector<Data_array>& point_data,
+               const std::vector<Data_array>& cell_data)
+{
+  check_mesh(mesh);
+  check_data(point_data, mesh.points.size(), "point");
+  check_data(cell_data, mesh.elements.size(), "cell");
+  constexpr int vtk_cell_type = D == 2 ? 5 : 10; // VTK_TRIANGLE, VTK_TETRA
+
+  Text_writer w(out);
+  w << "<?xml version=\"1.0\"?>\n"
+       "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+       "  <UnstructuredGrid>\n"
+       "    <Piece NumberOfPoints=\"" << mesh.points.size() << "\" NumberOfCells=\"" << mesh.elements.size()
+    << "\">\n";
+  if(!point_data.empty()) {
+    w << "      <PointData>\n";
+    write_vtu_data(w, point_data);
+    w << "      </PointData>\n";
+  }
+  if(!cell_data.empty()) {
+    w << "      <CellData>\n";
+    write_vtu_data(w, cell_data);
+    w << "      </CellData>\n";
+  }
+  w << "      <Points>\n"
+       "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  // p[D - 1], not p[2]: the 2D instantiation must compile too.
+  for(const auto& p : mesh.points)
+    w << "          " << p[0] << ' ' << p[1] << ' ' << (D == 3 ? p[D - 1] : 0.0) << '\n';
+  w << "        </DataArray>\n"
+       "      </Points>\n"
+       "      <Cells>\n"
+       "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  for(const auto& e : mesh.elements) {
+    w << "         ";
+    for(std::uint32_t v : e)
+      w << ' ' << v;
+    w << '\n';
+  }
+  w << "        </DataArray>\n"
+       "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  for(std::size_t i = 0; i < mesh.elements.size(); ++i)
+    w << "          " << (i + 1) * (D + 1) << '\n';
+  w << "        </DataArray>\n"
+       "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  for(std::size_t i = 0; i < mesh.elements.size(); ++i)
+    w << "          " << vtk_cell_type << '\n';
+  w << "        </DataArray>\n"
+       "      </Cells>\n"
+       "    </Piece>\n"
+       "  </UnstructuredGrid>\n"
+       "</VTKFile>\n";
+}
+
+template <int D>
+void write_vtu(const Indexed_mesh<D>& mesh, const std::string& path, const std::vector<Data_array>& point_data,
+               const std::vector<Data_array>& cell_data)
+{
+  // Check before creating anything, so a bad call leaves no trace on disk.
+  check_mesh(mesh);
+  check_data(point_data, mesh.points.size(), "point");
+  check_data(cell_data, mesh.elements.size(), "cell");
+  write_atomically(path, [&](std::ostream& out) { write_vtu(mesh, out, point_data, cell_data); });
+}
+
+template <int D>
+void write_mesh(const std::string& path, const Indexed_mesh<D>& mesh, const std::vector<Data_array>& point_data,
+                const std::vector<Data_array>& cell_data)
+{
+  if(has_extension(path, ".vtu")) {
+    write_vtu(mesh, path, point_data, cell_data);
+    return;
+  }
+  if(has_extension(path, ".mesh")) {
+    write_medit(mesh, path);
+    return;
+  }
+  const std::string extension = fs::path(path).extension().string();
+  throw Input_error(path, 0, (extension.empty() ? std::string("no file extension")
+                                                : "unknown output extension '" + extension + "'")
+                               + ": expected .vtu (VTK XML) or .mesh (Medit ASCII)");
+}
+
+void write_mesh(const std::string& path, const Mesh_file& file, const std::vector<Data_array>& point_data,
+                const std::vector<Data_array>& cell_data)
+{
+  if(file.dimension == 2)
+    write_mesh(path, file.mesh_2, point_data, cell_data);
+  else if(file.dimension == 3)
+    write_mesh(path, file.mesh_3, point_data, cell_data);
+  else
+    throw std::invalid_argument("write_mesh: Mesh_file::dimension is " + std::to_string(file.dimension)
+                                + ", expected 2 or 3");
+}
+
+void write_pvd(const std::string& path, const std::vector<Pvd_entry>& entries)
+{
+  write_atomically(path, [&entries](std::ostream& out) {
+    Text_writer w(out);
+    w << "<?xml version=\"1.0\"?>\n"
+         "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         "  <Collection>\n";
+    for(const Pvd_entry& e : entries)
+      w << "    <DataSet timestep=\"" << e.time << "\" group=\"\" part=\"0\" file=\"" << xml_escape(e.file)
+        << "\"/>\n";
+    w << "  </Collection>\n"
+         "</VTKFile>\n";
+  });
+}
+
+Pvd_writer::Pvd_writer(std::string path) : path_(std::move(path)) {}
+
+void Pvd_writer::add(double time, const std::string& vtu_path)
+{
+  const fs::path directory = fs::path(path_).parent_path();
+  const fs::path file(vtu_path);
+  fs::path stored = file;
+  if(!directory.empty()) {
+    fs::path relative = file.lexically_relative(directory);
+    if(relative.empty()) {
+      // One path absolute, the other relative: compare them both absolute.
+      std::error_code error;
+      const fs::path absolute_file = fs::absolute(file, error).lexically_normal();
+      const fs::path absolute_directory = fs::absolute(directory, error).lexically_normal();
+      if(!error)
+        relative = absolute_file.lexically_relative(absolute_directory);
+    }
+    if(!relative.empty())
+      stored = relative;
+  }
+  entries_.push_back({time, stored.generic_string()});
+  write_pvd(path_, entries_);
+}
+
+template void write_medit<2>(const Indexed_mesh<2>&, std::ostream&);
+template void write_medit<3>(const Indexed_mesh<3>&, std::ostream&);
+template void write_medit<2>(const Indexed_mesh<2>&, const std::string&);
+template void write_medit<3>(const Indexed_mesh<3>&, const std::string&);
+template void write_vtu<2>(const Indexed_mesh<2>&, std::ostream&, const std::vector<Data_array>&,
+                           const std::vector<Data_array>&);
+template void write_vtu<3>(const Indexed_mesh<3>&, std::ostream&, const std::vector<Data_array>&,
+                           const std::vector<Data_array>&);
+template void write_vtu<2>(const Indexed_mesh<2>&, const std::string&, const std::vector<Data_array>&,
+                           const std::vector<Data_array>&);
+template void write_vtu<3>(const Indexed_mesh<3>&, const std::string&, const std::vector<Data_array>&,
+                           const std::vector<Data_array>&);
+template void write_mesh<2>(const std::string&, const Indexed_mesh<2>&, const std::vector<Data_array>&,
+                            const std::vector<Data_array>&);
+template void write_mesh<3>(const std::string&, const Indexed_mesh<3>&, const std::vector<Data_array>&,
+                            const std::vector<Data_array>&);
+
+} // namespace spring_motion

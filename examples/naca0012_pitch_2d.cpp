@@ -6,6 +6,11 @@
 //
 //   naca0012_pitch_2d [--mesh coarse|fine] [--amplitude DEG] [--steps N]
 //                     [--report-dir DIR] [--max-amplitude] [--models a,b,...]
+//                     [--solver default|paper]
+//
+// --solver paper: SOR stopped when no component changes by more than 5e-6
+// (the paper's Eq. 12); default: conjugate gradients stopped when the
+// estimated error is below 1e-6 chord.
 #include <spring_motion/spring_motion.h>
 #include <spring_motion/domains/Naca0012_mesh_2.h>
 #include <spring_motion/io/network_output.h>
@@ -28,17 +33,20 @@ struct Setup
   std::size_t steps = 100;
   std::string report_dir;
   bool max_amplitude = false;
+  bool paper_solver = false; // SOR stopped by the paper's Eq. 12
   std::vector<std::string> models = sm::model_names();
 };
 
 // One pitch run of one model on a copy of the network.
 sm::Deform_report pitch(const sm::Spring_network<2>& net, const std::vector<sm::Vertex_role>& roles,
-                        const std::string& model, double amplitude, std::size_t steps,
+                        const std::string& model, double amplitude, const Setup& setup,
                         sm::Network_deformer<2>* keep = nullptr)
 {
   sm::Network_deformer<2> deformer(net, roles);
   sm::Deform_options options;
-  options.number_of_steps = steps;
+  options.number_of_steps = setup.steps;
+  if(setup.paper_solver)
+    options.solver = sm::Solver_options::paper();
   const sm::Pitch_motion<2> motion(amplitude, {0.25, 0.0}); // quarter chord
   auto report = sm::with_model(model, [&](const auto& m) { return deformer.run(motion, m, options); });
   if(keep)
@@ -48,14 +56,14 @@ sm::Deform_report pitch(const sm::Spring_network<2>& net, const std::vector<sm::
 
 // Largest amplitude in [0, 180] whose run completes, by bisection to 0.5 deg.
 double largest_amplitude(const sm::Spring_network<2>& net, const std::vector<sm::Vertex_role>& roles,
-                         const std::string& model, double sign, std::size_t steps)
+                         const std::string& model, double sign, const Setup& setup)
 {
   double lo = 0, hi = 180;
-  if(pitch(net, roles, model, sign * hi, steps).completed)
+  if(pitch(net, roles, model, sign * hi, setup).completed)
     return hi;
   while(hi - lo > 0.5) {
     const double mid = 0.5 * (lo + hi);
-    (pitch(net, roles, model, sign * mid, steps).completed ? lo : hi) = mid;
+    (pitch(net, roles, model, sign * mid, setup).completed ? lo : hi) = mid;
   }
   return lo;
 }
@@ -93,6 +101,14 @@ Setup parse(int argc, char** argv)
       s.report_dir = value();
     else if(a == "--max-amplitude")
       s.max_amplitude = true;
+    else if(a == "--solver") {
+      const std::string v = value();
+      if(v != "paper" && v != "default") {
+        std::cerr << "naca0012_pitch_2d: --solver takes paper or default\n";
+        std::exit(2);
+      }
+      s.paper_solver = v == "paper";
+    }
     else if(a == "--models") {
       s.models.clear();
       std::stringstream in(value());
@@ -100,7 +116,8 @@ Setup parse(int argc, char** argv)
         s.models.push_back(m);
     } else {
       std::cerr << "usage: naca0012_pitch_2d [--mesh coarse|fine] [--amplitude DEG] [--steps N]\n"
-                   "                         [--report-dir DIR] [--max-amplitude] [--models a,b,...]\n";
+                   "                         [--report-dir DIR] [--max-amplitude] [--models a,b,...]\n"
+                   "                         [--solver default|paper]\n";
       std::exit(a == "--help" ? 0 : 2);
     }
   }
@@ -128,16 +145,27 @@ int main(int argc, char** argv)
     moving += r == sm::Vertex_role::moving;
   std::printf("NACA0012 (%s mesh): %zu nodes, %zu triangles, %zu airfoil nodes (built in %.2f s)\n"
               "pitch about (0.25, 0), alpha = alpha_m sin(pi i / 2n), n = %zu, alpha_m = +/-%g deg\n"
+              "solver: %s\n"
               "R = equiangle skewness (Eq. 13) of the triangles touching the airfoil; histogram in %% per 0.1 bin\n\n",
               setup.mesh.c_str(), net.number_of_vertices(), net.number_of_elements(), moving,
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), setup.steps,
-              setup.amplitude);
+              setup.amplitude,
+              setup.paper_solver ? "SOR, stop when max change <= 5e-6 (the paper's Eq. 12)"
+                                 : "conjugate gradients + symmetric Gauss-Seidel, stop when estimated error <= 1e-6");
   std::printf("%-11s %4s %4s %16s %8s %6s  %-30s %8s %11s %8s\n", "model", "dir", "done", "first_invalid",
               "last_deg", "R_max", "R histogram 0..1 (%)", "min_size", "sweeps", "ms/step");
+  {
+    // the undeformed mesh, for reference (the paper's Fig. 5a)
+    sm::Network_deformer<2> original(net, roles);
+    const auto r = sm::element_skewness(net, original.positions());
+    const auto h = sm::skewness_histogram(r, [&](std::size_t t) { return original.touches_moving(t); });
+    std::printf("%-11s %4s %4s %16s %8.2f %6.3f  %-30s %8.3f %11s %8s\n", "original", "", "", "", 0.0, h.max,
+                histogram(h).c_str(), 1.0, "", "");
+  }
   for(const auto& model : setup.models) {
     for(const double sign : {+1.0, -1.0}) {
       sm::Network_deformer<2> final_state(net, roles);
-      const auto r = pitch(net, roles, model, sign * setup.amplitude, setup.steps, &final_state);
+      const auto r = pitch(net, roles, model, sign * setup.amplitude, setup, &final_state);
       std::size_t total = 0, most = 0;
       for(const auto& s : r.steps) {
         total += s.iterations;
@@ -178,8 +206,8 @@ int main(int argc, char** argv)
                        ", \"resolution_deg\": 0.5, \"models\": {";
     for(std::size_t k = 0; k < setup.models.size(); ++k) {
       const auto& model = setup.models[k];
-      const double pos = largest_amplitude(net, roles, model, +1, setup.steps);
-      const double neg = largest_amplitude(net, roles, model, -1, setup.steps);
+      const double pos = largest_amplitude(net, roles, model, +1, setup);
+      const double neg = largest_amplitude(net, roles, model, -1, setup);
       std::printf("%-11s %10.1f %10.1f\n", model.c_str(), pos, neg);
       std::fflush(stdout);
       char entry[160];

@@ -6,7 +6,7 @@
 //
 //   naca0012_pitch_2d [--mesh coarse|fine] [--amplitude DEG] [--steps N]
 //                     [--report-dir DIR] [--max-amplitude] [--models a,b,...]
-//                     [--solver default|paper]
+//                     [--solver default|paper] [--max-substep-halvings K]
 //
 // --solver paper: SOR stopped when no component changes by more than 5e-6
 // (the paper's Eq. 12); default: conjugate gradients stopped when the
@@ -34,6 +34,7 @@ struct Setup
   std::string report_dir;
   bool max_amplitude = false;
   bool paper_solver = false; // SOR stopped by the paper's Eq. 12
+  std::size_t max_substep_halvings = 0; // Deform_options::max_substep_halvings
   std::vector<std::string> models = sm::model_names();
 };
 
@@ -47,6 +48,7 @@ sm::Deform_report pitch(const sm::Spring_network<2>& net, const std::vector<sm::
   options.number_of_steps = setup.steps;
   if(setup.paper_solver)
     options.solver = sm::Solver_options::paper();
+  options.max_substep_halvings = setup.max_substep_halvings;
   const sm::Pitch_motion<2> motion(amplitude, {0.25, 0.0}); // quarter chord
   auto report = sm::with_model(model, [&](const auto& m) { return deformer.run(motion, m, options); });
   if(keep)
@@ -101,6 +103,8 @@ Setup parse(int argc, char** argv)
       s.report_dir = value();
     else if(a == "--max-amplitude")
       s.max_amplitude = true;
+    else if(a == "--max-substep-halvings")
+      s.max_substep_halvings = std::stoul(value());
     else if(a == "--solver") {
       const std::string v = value();
       if(v != "paper" && v != "default") {
@@ -117,7 +121,7 @@ Setup parse(int argc, char** argv)
     } else {
       std::cerr << "usage: naca0012_pitch_2d [--mesh coarse|fine] [--amplitude DEG] [--steps N]\n"
                    "                         [--report-dir DIR] [--max-amplitude] [--models a,b,...]\n"
-                   "                         [--solver default|paper]\n";
+                   "                         [--solver default|paper] [--max-substep-halvings K]\n";
       std::exit(a == "--help" ? 0 : 2);
     }
   }

@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <atomic>
 #include <cmath>
 #include <chrono>
@@ -474,4 +476,60 @@ TEST_CASE("read_mesh: truncated and corrupted copies of the data files never cra
     INFO(name << ": " << read << " copies read, " << failed << " rejected");
     CHECK(failed > 0);
   }
+}
+
+TEST_CASE("read_mesh: source lines of elements and facets, and the file's vertex numbers", "[read_mesh]")
+{
+  const Mesh_file medit = spring_motion::read_mesh(data_path("square_2d.mesh"));
+  REQUIRE(medit.element_lines.size() == medit.mesh_2.elements.size());
+  REQUIRE(medit.boundary_facet_lines.size() == medit.mesh_2.boundary_facets.size());
+  REQUIRE(medit.vertex_ids.size() == medit.mesh_2.points.size());
+  for(std::size_t i = 0; i < medit.vertex_ids.size(); ++i)
+    CHECK(medit.vertex_ids[i] == std::int64_t(i + 1));
+  // every recorded line holds that element's vertex numbers, 1-based
+  std::ifstream in(data_path("square_2d.mesh"));
+  std::vector<std::string> lines;
+  for(std::string l; std::getline(in, l);)
+    lines.push_back(l);
+  for(std::size_t t = 0; t < medit.element_lines.size(); ++t) {
+    std::istringstream line(lines.at(medit.element_lines[t] - 1));
+    std::array<std::uint32_t, 3> v;
+    line >> v[0] >> v[1] >> v[2];
+    CHECK(v[0] == medit.mesh_2.elements[t][0] + 1);
+    CHECK(v[1] == medit.mesh_2.elements[t][1] + 1);
+    CHECK(v[2] == medit.mesh_2.elements[t][2] + 1);
+  }
+  for(std::size_t f = 0; f < medit.boundary_facet_lines.size(); ++f) {
+    std::istringstream line(lines.at(medit.boundary_facet_lines[f] - 1));
+    std::array<std::uint32_t, 2> v;
+    line >> v[0] >> v[1];
+    CHECK(v[0] == medit.mesh_2.boundary_facets[f][0] + 1);
+    CHECK(v[1] == medit.mesh_2.boundary_facets[f][1] + 1);
+  }
+
+  // Gmsh: sparse node tags are kept as the vertex numbers; duplicates of an
+  // element in two physical groups keep the first copy's line
+  const std::string text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"          // 1-3
+                           "$Nodes\n3\n10 0 0 0\n20 1 0 0\n30 0 1 0\n$EndNodes\n" // 4-9
+                           "$Elements\n3\n1 2 2 5 1 10 20 30\n"                    // 10-12
+                           "2 1 2 7 1 10 20\n3 2 2 6 1 10 20 30\n$EndElements\n";  // 13-15
+  std::istringstream gmsh(text);
+  const Mesh_file g = spring_motion::read_gmsh(gmsh, "sparse.msh");
+  REQUIRE(g.dimension == 2);
+  CHECK(g.vertex_ids == std::vector<std::int64_t>{10, 20, 30});
+  CHECK(g.element_lines == std::vector<std::size_t>{12});
+  CHECK(g.boundary_facet_lines == std::vector<std::size_t>{13});
+}
+
+TEST_CASE("read_mesh: facets of a separate lower-dimensional part are mixed dimensions", "[read_mesh][errors]")
+{
+  // a tetrahedron plus a triangle that shares no vertex with it
+  const std::string v3 = "MeshVersionFormatted 2\nDimension 3\nVertices\n5\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n"
+                         "5 5 5 0\n"; // lines 1-9
+  check_error("mixed.mesh", v3 + "Tetrahedra\n1\n1 2 3 4 0\nTriangles\n2\n1 2 3 1\n1 2 5 2\nEnd\n", 16,
+              "mixed dimensions: this triangle uses vertex 5, which no tetrahedron uses");
+  // a triangle plus a line to a vertex outside it
+  const std::string v2 = medit_2d_header + "Vertices\n4\n0 0 0\n1 0 0\n0 1 0\n3 3 0\n"; // lines 1-8
+  check_error("mixed_2d.mesh", v2 + "Triangles\n1\n1 2 3 0\nEdges\n1\n3 4 1\n", 14,
+              "mixed dimensions: this edge uses vertex 4, which no triangle uses");
 }

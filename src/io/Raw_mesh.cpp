@@ -37,6 +37,37 @@ void copy_names(Indexed_mesh<D>& mesh, Raw_mesh& raw)
     mesh.label_names[tag] = name;
 }
 
+void fill_vertex_ids(Mesh_file& result, Raw_mesh& raw, std::size_t n)
+{
+  if(raw.point_ids.size() == n)
+    result.vertex_ids = std::move(raw.point_ids);
+  else {
+    result.vertex_ids.resize(n);
+    std::iota(result.vertex_ids.begin(), result.vertex_ids.end(), std::int64_t(1));
+  }
+}
+
+// A facet whose vertices no element uses cannot lie on the mesh's boundary:
+// it belongs to a separate part of lower dimension (a surface mesh next to a
+// volume mesh, a line mesh next to a triangle mesh).
+template <int D>
+void check_facets_use_element_vertices(const Indexed_mesh<D>& mesh, const Mesh_file& file,
+                                       const Token_reader& reader, const char* facet, const char* element)
+{
+  std::vector<char> used(mesh.points.size(), 0);
+  for(const auto& e : mesh.elements)
+    for(std::uint32_t v : e)
+      used[v] = 1;
+  for(std::size_t f = 0; f < mesh.boundary_facets.size(); ++f)
+    for(std::uint32_t v : mesh.boundary_facets[f])
+      if(!used[v])
+        reader.fail_at(file.boundary_facet_lines[f],
+                       std::string("mixed dimensions: this ") + facet + " uses vertex "
+                         + std::to_string(file.vertex_ids[v]) + ", which no " + element + " uses; expected every "
+                         + facet + " to lie on the boundary of the " + element + " mesh (a " + std::to_string(D)
+                         + "D mesh only)");
+}
+
 } // namespace
 
 std::string entry_suffix(const std::string& section, std::size_t entry_index)
@@ -57,7 +88,7 @@ void check_distinct_vertices(const std::array<std::uint32_t, N>& simplex, const 
 
 template <std::size_t N>
 std::size_t remove_duplicate_simplices(std::vector<std::array<std::uint32_t, N>>& simplices,
-                                       std::vector<int>& labels)
+                                       std::vector<int>& labels, std::vector<std::size_t>& lines)
 {
   using Key = std::array<std::uint32_t, N>;
   std::vector<std::pair<Key, std::size_t>> keys(simplices.size());
@@ -82,16 +113,21 @@ std::size_t remove_duplicate_simplices(std::vector<std::array<std::uint32_t, N>>
     if(keep[i]) {
       simplices[out] = simplices[i];
       labels[out] = labels[i];
+      lines[out] = lines[i];
       ++out;
     }
   simplices.resize(out);
   labels.resize(out);
+  lines.resize(out);
   return removed;
 }
 
-template std::size_t remove_duplicate_simplices<2>(std::vector<std::array<std::uint32_t, 2>>&, std::vector<int>&);
-template std::size_t remove_duplicate_simplices<3>(std::vector<std::array<std::uint32_t, 3>>&, std::vector<int>&);
-template std::size_t remove_duplicate_simplices<4>(std::vector<std::array<std::uint32_t, 4>>&, std::vector<int>&);
+template std::size_t remove_duplicate_simplices<2>(std::vector<std::array<std::uint32_t, 2>>&, std::vector<int>&,
+                                                      std::vector<std::size_t>&);
+template std::size_t remove_duplicate_simplices<3>(std::vector<std::array<std::uint32_t, 3>>&, std::vector<int>&,
+                                                      std::vector<std::size_t>&);
+template std::size_t remove_duplicate_simplices<4>(std::vector<std::array<std::uint32_t, 4>>&, std::vector<int>&,
+                                                      std::vector<std::size_t>&);
 template void check_distinct_vertices<2>(const std::array<std::uint32_t, 2>&, const Token_reader&,
                                          const std::string&, std::size_t);
 template void check_distinct_vertices<3>(const std::array<std::uint32_t, 3>&, const Token_reader&,
@@ -113,6 +149,10 @@ Mesh_file finish_mesh(Raw_mesh&& raw, const Token_reader& reader)
     mesh.boundary_facets = std::move(raw.triangles);
     mesh.boundary_labels = std::move(raw.triangle_labels);
     copy_names(mesh, raw);
+    result.element_lines = std::move(raw.tetrahedron_lines);
+    result.boundary_facet_lines = std::move(raw.triangle_lines);
+    fill_vertex_ids(result, raw, mesh.points.size());
+    check_facets_use_element_vertices(mesh, result, reader, "triangle", "tetrahedron");
     return result;
   }
 
@@ -138,6 +178,10 @@ Mesh_file finish_mesh(Raw_mesh&& raw, const Token_reader& reader)
     mesh.boundary_facets = std::move(raw.edges);
     mesh.boundary_labels = std::move(raw.edge_labels);
     copy_names(mesh, raw);
+    result.element_lines = std::move(raw.triangle_lines);
+    result.boundary_facet_lines = std::move(raw.edge_lines);
+    fill_vertex_ids(result, raw, mesh.points.size());
+    check_facets_use_element_vertices(mesh, result, reader, "edge", "triangle");
     return result;
   }
 

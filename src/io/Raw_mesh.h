@@ -30,12 +30,16 @@ struct Unsupported_elements
 struct Raw_mesh
 {
   std::vector<std::array<double, 3>> points;
+  std::vector<std::int64_t> point_ids; // the file's vertex numbers (Gmsh node tags); empty: 1, 2, ...
   std::vector<std::array<std::uint32_t, 4>> tetrahedra;
   std::vector<int> tetrahedron_labels;
+  std::vector<std::size_t> tetrahedron_lines;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<int> triangle_labels;
+  std::vector<std::size_t> triangle_lines;
   std::vector<std::array<std::uint32_t, 2>> edges;
   std::vector<int> edge_labels;
+  std::vector<std::size_t> edge_lines;
 
   // The first vertex off the z = 0 plane: a 2D mesh has none.
   std::size_t first_nonzero_z_line = 0; // 0: every z is 0
@@ -73,10 +77,10 @@ struct Raw_mesh
 Mesh_file finish_mesh(Raw_mesh&& raw, const Token_reader& reader);
 
 /// Removes the later copies of elements with the same vertex set (and their
-/// labels), keeping the first; returns how many were removed.
+/// labels and lines), keeping the first; returns how many were removed.
 template <std::size_t N>
 std::size_t remove_duplicate_simplices(std::vector<std::array<std::uint32_t, N>>& simplices,
-                                       std::vector<int>& labels);
+                                       std::vector<int>& labels, std::vector<std::size_t>& lines);
 
 /// The message suffix naming an entry of a section: " (Triangles entry 3)".
 std::string entry_suffix(const std::string& section, std::size_t entry_index);

@@ -286,6 +286,7 @@ void Gmsh_reader::add_node(std::int64_t tag, double x, double y, double z, std::
   if(!nodes_.add(tag))
     reader_.fail_at(line, "node tag " + std::to_string(tag) + " is used twice: expected distinct tags");
   raw_.add_point(x, y, z, line);
+  raw_.point_ids.push_back(tag);
 }
 
 void Gmsh_reader::read_nodes_2()
@@ -375,6 +376,7 @@ void Gmsh_reader::read_element(std::int64_t type, int label, std::size_t entry_i
     io_internal::check_distinct_vertices(edge, reader_, "$Elements", entry_index);
     raw_.edges.push_back(edge);
     raw_.edge_labels.push_back(label);
+    raw_.edge_lines.push_back(line);
     break;
   }
   case triangle_type: {
@@ -382,12 +384,14 @@ void Gmsh_reader::read_element(std::int64_t type, int label, std::size_t entry_i
     io_internal::check_distinct_vertices(triangle, reader_, "$Elements", entry_index);
     raw_.triangles.push_back(triangle);
     raw_.triangle_labels.push_back(label);
+    raw_.triangle_lines.push_back(line);
     break;
   }
   case tetrahedron_type:
     io_internal::check_distinct_vertices(vertices, reader_, "$Elements", entry_index);
     raw_.tetrahedra.push_back(vertices);
     raw_.tetrahedron_labels.push_back(label);
+    raw_.tetrahedron_lines.push_back(line);
     break;
   default:
     // Points carry nothing the mesh needs; other kinds are only an error if
@@ -424,9 +428,9 @@ void Gmsh_reader::read_elements_2()
   }
   expect_end("$Elements", std::to_string(count) + " elements");
   // An element in several physical groups is written once per group.
-  io_internal::remove_duplicate_simplices(raw_.tetrahedra, raw_.tetrahedron_labels);
-  io_internal::remove_duplicate_simplices(raw_.triangles, raw_.triangle_labels);
-  io_internal::remove_duplicate_simplices(raw_.edges, raw_.edge_labels);
+  io_internal::remove_duplicate_simplices(raw_.tetrahedra, raw_.tetrahedron_labels, raw_.tetrahedron_lines);
+  io_internal::remove_duplicate_simplices(raw_.triangles, raw_.triangle_labels, raw_.triangle_lines);
+  io_internal::remove_duplicate_simplices(raw_.edges, raw_.edge_labels, raw_.edge_lines);
 }
 
 void Gmsh_reader::read_elements_4()

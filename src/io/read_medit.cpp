@@ -93,7 +93,7 @@ void read_vertices(Token_reader& reader, int dimension, Raw_mesh& raw)
 template <std::size_t N>
 void read_simplices(Token_reader& reader, const char* section, const char* entries,
                     std::size_t number_of_vertices, std::vector<std::array<std::uint32_t, N>>& simplices,
-                    std::vector<int>& labels)
+                    std::vector<int>& labels, std::vector<std::size_t>& lines)
 {
   const std::size_t count = reader.expect_count((std::string("the number of ") + entries).c_str(), max_count);
   Section_progress progress{section, entries, count, 0};
@@ -103,8 +103,11 @@ void read_simplices(Token_reader& reader, const char* section, const char* entri
   labels.reserve(labels.size() + limit);
   for(std::size_t i = 0; i < count; ++i) {
     std::array<std::uint32_t, N> simplex;
+    std::size_t line = 0;
     for(std::size_t k = 0; k < N; ++k) {
       const std::int64_t index = reader.expect_integer("a vertex index");
+      if(k == 0)
+        line = reader.line();
       if(index < 1 || static_cast<std::uint64_t>(index) > number_of_vertices)
         reader.fail("vertex index " + std::to_string(index) + " out of range: expected 1 to "
                     + std::to_string(number_of_vertices) + io_internal::entry_suffix(section, i));
@@ -114,6 +117,7 @@ void read_simplices(Token_reader& reader, const char* section, const char* entri
     io_internal::check_distinct_vertices(simplex, reader, section, i);
     simplices.push_back(simplex);
     labels.push_back(label);
+    lines.push_back(line);
     ++progress.read;
   }
 }
@@ -186,16 +190,17 @@ Mesh_file read_medit(std::istream& in, const std::string& name_for_errors)
       have_vertices = true;
     } else if(equal_ignoring_case(keyword, "Triangles")) {
       require_vertices(keyword);
-      read_simplices(reader, "Triangles", "triangles", raw.points.size(), raw.triangles, raw.triangle_labels);
+      read_simplices(reader, "Triangles", "triangles", raw.points.size(), raw.triangles, raw.triangle_labels,
+                     raw.triangle_lines);
     } else if(equal_ignoring_case(keyword, "Tetrahedra")) {
       require_vertices(keyword);
       if(dimension == 2)
         reader.fail("Tetrahedra in a Dimension 2 file: mixed 2D and 3D elements, expected Triangles only");
       read_simplices(reader, "Tetrahedra", "tetrahedra", raw.points.size(), raw.tetrahedra,
-                     raw.tetrahedron_labels);
+                     raw.tetrahedron_labels, raw.tetrahedron_lines);
     } else if(equal_ignoring_case(keyword, "Edges")) {
       require_vertices(keyword);
-      read_simplices(reader, "Edges", "edges", raw.points.size(), raw.edges, raw.edge_labels);
+      read_simplices(reader, "Edges", "edges", raw.points.size(), raw.edges, raw.edge_labels, raw.edge_lines);
     } else {
       const Known_section* known = nullptr;
       for(const Known_section& k : known_sections)

@@ -5,8 +5,11 @@
 #include <spring_motion/Indexed_mesh.h>
 #include <spring_motion/Input_error.h>
 
+#include <cstddef>
+#include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace spring_motion {
 
@@ -17,6 +20,15 @@ struct Mesh_file
   int dimension = 0;   // 2 or 3
   Indexed_mesh<2> mesh_2;
   Indexed_mesh<3> mesh_3;
+
+  // Where things came from, for messages that point into the file.
+  /// The number the file gives each vertex: Medit's 1-based index, Gmsh's
+  /// node tag (one per vertex, in the order of `points`).
+  std::vector<std::int64_t> vertex_ids;
+  /// The 1-based line on which each element, and each boundary facet, is
+  /// written (one per entry of `elements` and of `boundary_facets`).
+  std::vector<std::size_t> element_lines;
+  std::vector<std::size_t> boundary_facet_lines;
 };
 
 /// Reads a mesh file, choosing the format by extension (case-insensitive):
@@ -29,6 +41,9 @@ struct Mesh_file
 ///    its labelled boundary facets; every vertex must then have z == 0, since
 ///    surface meshes in 3D are not supported;
 ///  - neither: an error.
+/// Facets of the lower dimension (triangles of a 3D mesh, edges of a 2D mesh)
+/// that use a vertex no element uses are a separate, lower-dimensional part
+/// of the file (mixed 2D and 3D): an error, since they cannot bound the mesh.
 /// Vertex indices become 0-based; unused vertices are kept, in file order.
 /// Elements of an unsupported kind in the mesh's own dimension (quadrilaterals
 /// in 2D; hexahedra, prisms, pyramids in 3D; any higher-order element) are an

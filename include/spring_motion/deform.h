@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <deque>
+#include <functional>
 #include <vector>
 
 namespace spring_motion {
@@ -123,6 +124,13 @@ public:
   std::size_t number_of_moving_vertices() const { return moving_.size(); }
   std::size_t number_of_fixed_vertices() const { return fixed_.size(); }
   double fraction() const { return t_; }
+
+  /// Called, when set, with each step's linear system just before it is
+  /// solved: the system, the free vertices, and the initial iterate (warm
+  /// start at free vertices, prescribed increments at constrained ones).
+  /// For benchmarks and diagnostics that re-solve the very same systems.
+  std::function<void(const internal::Linear_system<D>&, const std::vector<Index>&, const std::vector<Point>&)>
+      system_observer;
 
   /// Runs the whole motion from the current state (t = 0 for a new deformer).
   template <class Motion, class Model, class Visitor = Default_deform_visitor>
@@ -275,6 +283,8 @@ private:
                           "free vertex " << i << " has zero total stiffness: the model gave k = 0 on all its edges");
     s.seconds_stiffness += seconds_since(t0);
 
+    if(system_observer)
+      system_observer(system_, free_, delta);
     t0 = Clock::now();
     const Solve_report sr = internal::solve(net_, system_, free_, delta, options.solver);
     s.seconds_solve += seconds_since(t0);

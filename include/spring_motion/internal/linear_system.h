@@ -188,6 +188,23 @@ inline void check_options(const Solver_options& o)
                       "solver tolerance must be positive and finite, got " << o.tolerance);
 }
 
+/// One SOR sweep in the order of `free_vertices`; returns the largest change.
+template <int D>
+double sor_sweep(const Spring_network<D>& net, const Linear_system<D>& sys, const std::vector<Index>& free_vertices,
+                 Field<D>& x, double omega, int /*threads*/ = 1)
+{
+  double max_update = 0;
+  for(Index i : free_vertices) {
+    const auto y = local_solve(net, sys, x, i);
+    for(int c = 0; c < D; ++c) {
+      const double nv = (1 - omega) * x[i][c] + omega * y[c];
+      sticky_max(max_update, std::abs(nv - x[i][c]));
+      x[i][c] = nv;
+    }
+  }
+  return max_update;
+}
+
 /// Successive over-relaxation in the order of `free_vertices`; the entries
 /// of x at constrained vertices are the prescribed increments and stay put.
 template <int D>
@@ -200,15 +217,7 @@ Solve_report solve_sor(const Spring_network<D>& net, const Linear_system<D>& sys
   Stopping_test stop(options);
   while(report.iterations < options.max_iterations) {
     stop.before_next();
-    double max_update = 0;
-    for(Index i : free_vertices) {
-      const auto y = local_solve(net, sys, x, i);
-      for(int c = 0; c < D; ++c) {
-        const double nv = (1 - omega) * x[i][c] + omega * y[c];
-        sticky_max(max_update, std::abs(nv - x[i][c]));
-        x[i][c] = nv;
-      }
-    }
+    const double max_update = sor_sweep(net, sys, free_vertices, x, omega);
     ++report.iterations;
     SPRING_MOTION_CHECK(std::isfinite(max_update),
                         "the solver produced a non-finite value at sweep " << report.iterations);

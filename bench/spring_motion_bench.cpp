@@ -1,0 +1,692 @@
+// SpringMotion benchmark (issue 6): one table of where the time of a motion
+// goes, how the increment solver compares with Eigen's solvers on the very
+// same linear systems, how close one SOR sweep comes to the memory-traffic
+// bound, and 1 versus 2 threads; then the performance targets, each with
+// target / measured / met.
+//
+//   cmake -S . -B build-bench -DCMAKE_BUILD_TYPE=Release -DSPRING_MOTION_BUILD_BENCH=ON
+//   cmake --build build-bench --target spring_motion_bench
+//   ./build-bench/bench/spring_motion_bench            # full run (minutes)
+//   ./build-bench/bench/spring_motion_bench --quick    # smoke run (seconds)
+//
+// Options: --quick, --cases a,b,... (naca_coarse, naca_fine, wing, box),
+// --box N (cubes per side of the structured box; 100 gives ~1M nodes),
+// --repeats R (runs per case and thread count for the medians).
+// Progress goes to stderr, the tables to stdout.
+#include <spring_motion/spring_motion.h>
+#include <spring_motion/domains/Naca0012_mesh_2.h>
+#if __has_include(<spring_motion/domains/Naca0012_wing_mesh_3.h>)
+#include <spring_motion/domains/Naca0012_wing_mesh_3.h>
+#define SPRING_MOTION_BENCH_HAS_WING 1
+#endif
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace sm = spring_motion;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+double median(std::vector<double> v)
+{
+  if(v.empty())
+    return std::nan("");
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+void progress(const std::string& s)
+{
+  std::cerr << "[bench] " << s << std::endl;
+}
+
+struct Setup
+{
+  bool quick = false;
+  std::vector<std::string> cases = {"naca_coarse", "naca_fine", "wing", "box"};
+  std::size_t box = 100;
+  int repeats = 5;
+};
+
+// STREAM-like triad a = b + s c over arrays far larger than the caches, best
+// of several passes; bytes counted as STREAM does (3 x 8 per element).
+double triad_bandwidth(int threads, std::size_t n)
+{
+  std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 2.0);
+  const long ln = long(n);
+  double best = 1e300;
+  for(int pass = 0; pass < 6; ++pass) {
+    const auto t0 = Clock::now();
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for(long i = 0; i < ln; ++i)
+      a[std::size_t(i)] = b[std::size_t(i)] + 3.0 * c[std::size_t(i)];
+    const double t = seconds_since(t0);
+    if(pass > 0) // the first pass pays the page faults
+      best = std::min(best, t);
+  }
+  volatile double sink = a[n / 2];
+  (void)sink;
+  return 24.0 * double(n) / best;
+}
+
+// The first `steps` steps of a longer schedule: t in [0, 1] here is t * scale
+// of the underlying motion. Lets a huge case run a few representative steps.
+template <class Motion>
+struct Partial_motion
+{
+  Motion base;
+  double scale = 1;
+  template <class P>
+  P operator()(const P& p, double t) const { return base(p, t * scale); }
+  sm::Motion_description description() const { return sm::internal::describe_motion(base); }
+};
+
+template <int D>
+struct Captured_system
+{
+  sm::internal::Linear_system<D> sys;
+  std::vector<sm::Index> free;
+  std::vector<std::array<double, D>> x0;
+  std::size_t step = 0;
+};
+
+template <int D>
+struct Case
+{
+  std::string name;
+  sm::Spring_network<D> net;
+  std::vector<sm::Vertex_role> roles;
+  sm::Pitch_motion<D> motion;
+  std::size_t steps = 100;      // steps of the run
+  std::size_t of_steps = 100;   // of a schedule with this many steps (steps < of_steps: partial run)
+  int repeats = 3;
+  bool direct_reference = true; // SimplicialLDLT affordable
+  std::vector<std::size_t> capture_steps;
+};
+
+struct Run_stats
+{
+  int threads = 1;
+  bool completed = false;
+  double total = 0; // median over repeats, s
+  double stiffness = 0, solve = 0, check = 0; // median per step, s
+  double iterations = 0; // mean per step
+};
+
+struct Compare_stats
+{
+  std::string reference;   // "LDLT" or "CG 1e-12"
+  double error = 0;        // max |ours - reference| over captured systems
+  double ours_seconds = 0; // sums over captured systems
+  double ic_seconds = 0, ldlt_seconds = 0;
+  double ic_error = 0;
+  bool ic_reached = true;
+  double ic_tol = 0;
+  bool ldlt = false;
+};
+
+struct Sweep_stats
+{
+  double seconds = 0, bound = 0; // one SOR sweep; traffic bytes / bandwidth
+  double bytes = 0;
+};
+
+struct Row
+{
+  std::string name;
+  std::size_t nodes = 0, elements = 0, free = 0, steps = 0, of_steps = 0;
+  std::vector<Run_stats> runs; // 1 and 2 threads
+  Compare_stats cmp;
+  std::vector<Sweep_stats> sweeps; // 1 and 2 threads
+  bool available = true;
+  std::string note;
+};
+
+// ---- Eigen on the captured systems -------------------------------------------------
+
+template <int D>
+struct Eigen_system
+{
+  Eigen::SparseMatrix<double> A; // free x free (scalar system: one matrix for all D components)
+  Eigen::MatrixXd b, x0;         // nf x D
+};
+
+template <int D>
+Eigen_system<D> to_eigen(const sm::Spring_network<D>& net, const Captured_system<D>& c)
+{
+  SPRING_MOTION_CHECK(!c.sys.block, "the benchmark compares scalar (edge-model) systems only");
+  const std::size_t n = net.number_of_vertices();
+  std::vector<long> pos(n, -1);
+  for(std::size_t k = 0; k < c.free.size(); ++k)
+    pos[c.free[k]] = long(k);
+  const long nf = long(c.free.size());
+  Eigen_system<D> e;
+  e.b = Eigen::MatrixXd::Zero(nf, D);
+  e.x0 = Eigen::MatrixXd::Zero(nf, D);
+  std::vector<Eigen::Triplet<double>> trip;
+  for(long k = 0; k < nf; ++k) {
+    const sm::Index i = c.free[std::size_t(k)];
+    trip.emplace_back(k, k, c.sys.diagonal[i]);
+    for(int d = 0; d < D; ++d)
+      e.x0(k, d) = c.x0[i][d];
+    for(sm::Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p) {
+      const sm::Index j = net.adjacency[p];
+      const double w = c.sys.weight[p];
+      if(pos[j] >= 0)
+        trip.emplace_back(k, pos[j], -w);
+      else
+        for(int d = 0; d < D; ++d)
+          e.b(k, d) += w * c.x0[j][d];
+    }
+  }
+  e.A.resize(nf, nf);
+  e.A.setFromTriplets(trip.begin(), trip.end());
+  return e;
+}
+
+template <int D>
+double max_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b)
+{
+  return (a - b).cwiseAbs().maxCoeff();
+}
+
+template <int D>
+Eigen::MatrixXd free_values(const Captured_system<D>& c, const std::vector<std::array<double, D>>& x)
+{
+  Eigen::MatrixXd m(long(c.free.size()), D);
+  for(std::size_t k = 0; k < c.free.size(); ++k)
+    for(int d = 0; d < D; ++d)
+      m(long(k), d) = x[c.free[k]][d];
+  return m;
+}
+
+// ---- the cases -------------------------------------------------------------------------
+
+Case<2> naca_case(bool fine, const Setup& setup)
+{
+  Case<2> c;
+  c.name = fine ? "NACA0012 2D fine" : "NACA0012 2D coarse";
+  sm::Mesh_2_cdt cdt;
+  sm::make_naca0012_mesh_2(cdt, fine ? sm::Naca0012_mesh_2_options::fine() : sm::Naca0012_mesh_2_options{});
+  c.net = sm::extract_spring_network(cdt).network;
+  c.roles = sm::assign_roles(c.net, sm::moving_boundary_where([](const std::array<double, 2>& p) {
+                               return sm::is_on_naca0012_airfoil(p[0], p[1]);
+                             }));
+  c.motion = sm::Pitch_motion<2>(45, {0.25, 0.0});
+  c.steps = c.of_steps = setup.quick ? 20 : 100;
+  c.repeats = setup.quick ? 1 : (fine ? 3 : setup.repeats);
+  c.capture_steps = {1, c.steps / 2, c.steps};
+  return c;
+}
+
+// A structured tetrahedral grid: the unit cube in N^3 cubes of 6 tetrahedra
+// each (Kuhn split, conforming), minus a centred cubic block of (N/4)^3
+// cubes whose surface pitches about the z axis through the centre. About
+// (N+1)^3 nodes: N = 100 gives 1.03 million nodes and 5.9 million tetrahedra.
+Case<3> box_case(std::size_t N, const Setup& setup)
+{
+  Case<3> c;
+  std::ostringstream name;
+  const std::size_t lo = (3 * N) / 8, hi = lo + std::max<std::size_t>(1, N / 4);
+  auto in_block_cube = [&](std::size_t i, std::size_t j, std::size_t k) {
+    return i >= lo && i < hi && j >= lo && j < hi && k >= lo && k < hi;
+  };
+  auto strictly_inside = [&](std::size_t i, std::size_t j, std::size_t k) {
+    return i > lo && i < hi && j > lo && j < hi && k > lo && k < hi;
+  };
+  const std::size_t M = N + 1;
+  std::vector<sm::Index> id(M * M * M, sm::Index(-1));
+  std::vector<std::array<double, 3>> points;
+  for(std::size_t k = 0; k < M; ++k)
+    for(std::size_t j = 0; j < M; ++j)
+      for(std::size_t i = 0; i < M; ++i)
+        if(!strictly_inside(i, j, k)) {
+          id[(k * M + j) * M + i] = sm::Index(points.size());
+          points.push_back({double(i) / double(N), double(j) / double(N), double(k) / double(N)});
+        }
+  std::vector<std::array<sm::Index, 4>> tets;
+  tets.reserve(6 * N * N * N);
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  const bool odd[6] = {false, true, true, false, false, true};
+  for(std::size_t k = 0; k < N; ++k)
+    for(std::size_t j = 0; j < N; ++j)
+      for(std::size_t i = 0; i < N; ++i) {
+        if(in_block_cube(i, j, k))
+          continue;
+        for(int p = 0; p < 6; ++p) {
+          std::array<std::size_t, 3> v{i, j, k};
+          std::array<sm::Index, 4> t;
+          t[0] = id[(v[2] * M + v[1]) * M + v[0]];
+          for(int s = 0; s < 3; ++s) {
+            ++v[std::size_t(perms[p][s])];
+            t[std::size_t(s) + 1] = id[(v[2] * M + v[1]) * M + v[0]];
+          }
+          if(odd[p]) // all elements positively oriented
+            std::swap(t[2], t[3]);
+          tets.push_back(t);
+        }
+      }
+  c.net = sm::make_spring_network<3>(std::move(points), std::move(tets));
+  name << "box 3D " << N << "^3 x6 tets";
+  c.name = name.str();
+  const double eps = 0.25 / double(N);
+  c.roles = sm::assign_roles(c.net, sm::moving_boundary_where([&](const std::array<double, 3>& p) {
+                               for(int d = 0; d < 3; ++d)
+                                 if(p[d] < eps || p[d] > 1 - eps)
+                                   return false;
+                               return true; // a boundary vertex off the outer box: the block's surface
+                             }));
+  c.motion = sm::Pitch_motion<3>(30, {0.5, 0.5, 0.5});
+  c.motion.axis = {0, 0, 1};
+  c.of_steps = 100;
+  c.steps = setup.quick ? 2 : 3;
+  c.repeats = 1;
+  c.direct_reference = c.net.number_of_vertices() <= 300000;
+  c.capture_steps = {c.steps};
+  return c;
+}
+
+// ---- measurements ----------------------------------------------------------------------
+
+template <int D>
+Run_stats run_case(const Case<D>& c, int threads, std::vector<Captured_system<D>>* capture)
+{
+  Run_stats st;
+  st.threads = threads;
+  std::vector<double> totals, stiff, solve, check;
+  double iterations = 0;
+  std::size_t counted = 0;
+  for(int r = 0; r < c.repeats; ++r) {
+    sm::Network_deformer<D> deformer(c.net, c.roles);
+    std::size_t call = 0;
+    if(capture && r == 0)
+      deformer.system_observer = [&](const sm::internal::Linear_system<D>& sys, const std::vector<sm::Index>& free,
+                                     const std::vector<std::array<double, D>>& x0) {
+        ++call;
+        if(std::find(c.capture_steps.begin(), c.capture_steps.end(), call) != c.capture_steps.end())
+          capture->push_back({sys, free, x0, call});
+      };
+    sm::Deform_options options;
+    options.number_of_steps = c.steps;
+    options.solver.threads = threads;
+    options.quality_every_step = false; // the exact validity check still runs every step
+    const Partial_motion<sm::Pitch_motion<D>> motion{c.motion, double(c.steps) / double(c.of_steps)};
+    const auto rep = deformer.run(motion, sm::Grid_scaled_stiffness{}, options);
+    st.completed = rep.completed;
+    totals.push_back(rep.seconds_total);
+    for(const auto& s : rep.steps) {
+      stiff.push_back(s.seconds_stiffness);
+      solve.push_back(s.seconds_solve);
+      check.push_back(s.seconds_check);
+      iterations += double(s.iterations);
+      ++counted;
+    }
+    progress(c.name + ": run " + std::to_string(r + 1) + "/" + std::to_string(c.repeats) + " with " +
+             std::to_string(threads) + " thread(s): " + std::to_string(rep.seconds_total) + " s" +
+             (rep.completed ? "" : " (NOT completed)"));
+  }
+  st.total = median(totals);
+  st.stiffness = median(stiff);
+  st.solve = median(solve);
+  st.check = median(check);
+  st.iterations = counted ? iterations / double(counted) : 0;
+  return st;
+}
+
+// Our default solver, Eigen's CG + incomplete Cholesky and SimplicialLDLT on the
+// captured systems, all from the run's initial iterate. Our time is the median of
+// `repeats` solves; Eigen's CG tolerance is tightened by 10x until its error is
+// at most ours ("equal error").
+template <int D>
+Compare_stats compare_solvers(const Case<D>& c, const std::vector<Captured_system<D>>& caps, int repeats)
+{
+  Compare_stats out;
+  out.ldlt = c.direct_reference;
+  out.reference = c.direct_reference ? "LDLT" : "CG 1e-13";
+  for(const auto& cap : caps) {
+    progress(c.name + ": solver comparison on the system of step " + std::to_string(cap.step));
+    const auto e = to_eigen<D>(c.net, cap);
+    Eigen::MatrixXd reference;
+    if(c.direct_reference) {
+      const auto t0 = Clock::now();
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(e.A);
+      SPRING_MOTION_CHECK(ldlt.info() == Eigen::Success, "LDLT failed");
+      reference = ldlt.solve(e.b);
+      out.ldlt_seconds += seconds_since(t0);
+    } else {
+      auto x = cap.x0;
+      sm::Solver_options o;
+      o.tolerance = 1e-13;
+      o.threads = 0;
+      sm::internal::solve(c.net, cap.sys, cap.free, x, o);
+      reference = free_values<D>(cap, x);
+    }
+    std::vector<double> ts;
+    Eigen::MatrixXd ours;
+    for(int r = 0; r < repeats; ++r) {
+      auto x = cap.x0;
+      sm::Solver_options o;
+      o.threads = 1;
+      const auto t0 = Clock::now();
+      sm::internal::solve(c.net, cap.sys, cap.free, x, o);
+      ts.push_back(seconds_since(t0));
+      if(r == 0)
+        ours = free_values<D>(cap, x);
+    }
+    const double t_ours = median(ts);
+    const double err = max_difference<D>(ours, reference);
+    out.ours_seconds += t_ours;
+    out.error = std::max(out.error, err);
+    // Eigen CG + IC at equal error
+    bool reached = false;
+    double t_ic = 0, e_ic = 0, tol = 1e-4;
+    for(; tol >= 1e-15; tol /= 10) {
+      const auto t0 = Clock::now();
+      Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                               Eigen::IncompleteCholesky<double>>
+          cg;
+      cg.setTolerance(tol);
+      cg.setMaxIterations(100000);
+      cg.compute(e.A);
+      Eigen::MatrixXd x(e.b.rows(), D);
+      for(int d = 0; d < D; ++d)
+        x.col(d) = cg.solveWithGuess(e.b.col(d), e.x0.col(d));
+      t_ic = seconds_since(t0);
+      e_ic = max_difference<D>(x, reference);
+      if(e_ic <= err) {
+        reached = true;
+        break;
+      }
+    }
+    out.ic_seconds += t_ic;
+    out.ic_error = std::max(out.ic_error, e_ic);
+    out.ic_reached = out.ic_reached && reached;
+    out.ic_tol = std::max(out.ic_tol, tol);
+  }
+  return out;
+}
+
+// One SOR sweep over the free vertices (median of several), and the bytes it must
+// move at least: each array it reads once (index, weight, diagonal, row offsets,
+// the free-vertex list), the solution read and written once, the constrained
+// values read once.
+template <int D>
+Sweep_stats time_sweep(const Case<D>& c, const Captured_system<D>& cap, int threads, double bandwidth)
+{
+  Sweep_stats s;
+  auto x = cap.x0;
+  std::vector<double> ts;
+  const int reps = c.net.number_of_vertices() > 200000 ? 7 : 31;
+  for(int r = 0; r < reps; ++r) {
+    const auto t0 = Clock::now();
+    sm::internal::sor_sweep(c.net, cap.sys, cap.free, x, 1.0, threads);
+    ts.push_back(seconds_since(t0));
+  }
+  s.seconds = median(ts);
+  std::size_t nnz = 0;
+  for(sm::Index i : cap.free)
+    nnz += c.net.adjacency_offsets[i + 1] - c.net.adjacency_offsets[i];
+  const double nf = double(cap.free.size()), nc = double(c.net.number_of_vertices()) - nf;
+  s.bytes = double(nnz) * (sizeof(sm::Index) + sizeof(double)) +
+            nf * (sizeof(sm::Index) /*free list*/ + sizeof(sm::Index) /*offsets*/ + sizeof(double) /*diagonal*/ +
+                  2.0 * D * sizeof(double) /*x read + write*/) +
+            nc * D * sizeof(double);
+  s.bound = s.bytes / bandwidth;
+  return s;
+}
+
+template <int D>
+Row measure(const Case<D>& c, const std::vector<double>& bandwidth)
+{
+  Row row;
+  row.name = c.name;
+  row.nodes = c.net.number_of_vertices();
+  row.elements = c.net.number_of_elements();
+  row.steps = c.steps;
+  row.of_steps = c.of_steps;
+  for(auto r : c.roles)
+    row.free += r == sm::Vertex_role::free;
+  std::vector<Captured_system<D>> caps;
+  for(int threads : {1, 2})
+    row.runs.push_back(run_case(c, threads, threads == 1 ? &caps : nullptr));
+  row.cmp = compare_solvers(c, caps, c.net.number_of_vertices() > 200000 ? 1 : 7);
+  progress(c.name + ": SOR sweep timing");
+  for(int threads : {1, 2})
+    row.sweeps.push_back(time_sweep(c, caps.back(), threads, bandwidth[std::size_t(threads - 1)]));
+  return row;
+}
+
+// ---- output ----------------------------------------------------------------------------
+
+void print_table(const std::vector<Row>& rows)
+{
+  std::printf("\nPer case and thread count. Run: whole motion with the grid-scaled model (median over repeats);\n"
+              "ms/step: median per step of stiffness / solve / exact check; it: solver iterations per step (mean);\n"
+              "err: max |ours - reference| on the captured systems (ref: SimplicialLDLT, or for the largest case a\n"
+              "CG solve to 1e-13); IC x, LDLT x: Eigen's time / ours on the same systems at equal or smaller error;\n"
+              "sweep: one SOR sweep vs the traffic bound (bytes / triad bandwidth); x2thr: 1-thread run / 2-thread run.\n\n");
+  std::printf("%-26s %9s %4s %6s %9s %8s %8s %8s %6s %9s %5s %7s %7s %8s %8s %6s %6s\n", "case", "nodes", "thr",
+              "steps", "run s", "stiff", "solve", "check", "it", "err", "ref", "IC x", "LDLT x", "sweep ms", "bound ms",
+              "ratio", "x2thr");
+  for(const auto& r : rows) {
+    if(!r.available) {
+      std::printf("%-26s %s\n", r.name.c_str(), r.note.c_str());
+      continue;
+    }
+    for(std::size_t k = 0; k < r.runs.size(); ++k) {
+      const auto& s = r.runs[k];
+      const auto& w = r.sweeps[k];
+      char steps[32];
+      if(r.steps == r.of_steps)
+        std::snprintf(steps, sizeof steps, "%zu", r.steps);
+      else
+        std::snprintf(steps, sizeof steps, "%zu/%zu", r.steps, r.of_steps);
+      char ic[16], ld[16];
+      std::snprintf(ic, sizeof ic, "%s%.2f", r.cmp.ic_reached ? "" : ">", r.cmp.ic_seconds / r.cmp.ours_seconds);
+      if(r.cmp.ldlt)
+        std::snprintf(ld, sizeof ld, "%.2f", r.cmp.ldlt_seconds / r.cmp.ours_seconds);
+      else
+        std::snprintf(ld, sizeof ld, "n/a");
+      std::printf("%-26s %9zu %4d %6s %9.3f %8.3f %8.3f %8.3f %6.1f %9.2e %5s %7s %7s %8.3f %8.3f %6.2f %6.2f%s\n",
+                  k == 0 ? r.name.c_str() : "", r.nodes, s.threads, steps, s.total, 1e3 * s.stiffness,
+                  1e3 * s.solve, 1e3 * s.check, s.iterations, r.cmp.error, k == 0 ? (r.cmp.ldlt ? "LDLT" : "CG") : "",
+                  k == 0 ? ic : "", k == 0 ? ld : "", 1e3 * w.seconds, 1e3 * w.bound, w.seconds / w.bound,
+                  k == 0 ? 1.0 : r.runs[0].total / s.total, s.completed ? "" : " (not completed)");
+    }
+  }
+}
+
+struct Target
+{
+  std::string what, target, measured;
+  bool met;
+  std::string margin;
+};
+
+void print_targets(const std::vector<Row>& rows, bool quick)
+{
+  std::vector<Target> ts;
+  auto find = [&](const std::string& prefix) -> const Row* {
+    for(const auto& r : rows)
+      if(r.available && r.name.rfind(prefix, 0) == 0)
+        return &r;
+    return nullptr;
+  };
+  auto best = [](const Row& r) {
+    double t = 1e300;
+    for(const auto& s : r.runs)
+      t = std::min(t, s.total);
+    return t;
+  };
+  char buf[160];
+  if(const Row* r = find("NACA0012 2D coarse")) {
+    const double t = best(*r);
+    const bool ok_err = r->cmp.error <= 1e-6;
+    std::snprintf(buf, sizeof buf, "%.3f s, err %.1e", t, r->cmp.error);
+    char m[64];
+    std::snprintf(m, sizeof m, "%.2fx the target", t / 0.3);
+    ts.push_back({"2D paper case, grid-scaled, " + std::to_string(r->steps) + " steps to 45 deg, err <= 1e-6",
+                  "<= 0.3 s", buf, t <= 0.3 && ok_err && r->runs[0].completed, m});
+  }
+  if(const Row* r = find("wing")) {
+    const double t = best(*r);
+    std::snprintf(buf, sizeof buf, "%.2f s, err %.1e", t, r->cmp.error);
+    char m[64];
+    std::snprintf(m, sizeof m, "%.2fx the target", t / 15);
+    ts.push_back({"3D wing, 100 steps to 30 deg", "<= 15 s", buf, t <= 15 && r->cmp.error <= 1e-6, m});
+  }
+  {
+    const Row* a = find("wing");
+    std::string from = "wing";
+    if(!a) {
+      a = find("NACA0012 2D fine");
+      from = "2D fine (no wing mesh)";
+    }
+    const Row* b = find("box");
+    if(a && b) {
+      auto per_step = [&](const Row& r) {
+        double t = 1e300;
+        for(const auto& s : r.runs)
+          t = std::min(t, s.total / double(r.steps));
+        return t;
+      };
+      const double p = std::log(per_step(*b) / per_step(*a)) / std::log(double(b->nodes) / double(a->nodes));
+      std::snprintf(buf, sizeof buf, "n^%.2f (%s -> box)", p, from.c_str());
+      char m[64];
+      std::snprintf(m, sizeof m, "exponent %+.2f vs 1.15", p - 1.15);
+      ts.push_back({"cost per step scaling", "<= n^1.15", buf, p <= 1.15, m});
+    }
+  }
+  {
+    const Row* r = find("box");
+    if(!r)
+      r = find("NACA0012 2D fine");
+    if(r) {
+      const auto& w = r->sweeps[0];
+      std::snprintf(buf, sizeof buf, "%.2fx bound (%s, 1 thr)", w.seconds / w.bound, r->name.c_str());
+      char m[64];
+      std::snprintf(m, sizeof m, "%.2fx vs 2x", w.seconds / w.bound);
+      ts.push_back({"one SOR sweep vs traffic bound", "<= 2x", buf, w.seconds / w.bound <= 2, m});
+    }
+  }
+  {
+    double worst = 1e300;
+    std::string where;
+    for(const auto& r : rows)
+      if(r.available) {
+        const double x = r.cmp.ic_seconds / r.cmp.ours_seconds;
+        if(x < worst) {
+          worst = x;
+          where = r.name;
+        }
+      }
+    if(!where.empty()) {
+      std::snprintf(buf, sizeof buf, "%.2fx (worst: %s)", worst, where.c_str());
+      char m[64];
+      std::snprintf(m, sizeof m, "%.2fx vs 2x", worst);
+      ts.push_back({"default solver vs Eigen CG+IC", ">= 2x faster", buf, worst >= 2, m});
+    }
+  }
+  std::printf("\nTargets (issue 6 point 4)%s:\n", quick ? " -- QUICK RUN, smaller cases: not the real check" : "");
+  std::printf("%-58s %-14s %-44s %-5s %s\n", "target", "bound", "measured", "met?", "by how much");
+  for(const auto& t : ts)
+    std::printf("%-58s %-14s %-44s %-5s %s\n", t.what.c_str(), t.target.c_str(), t.measured.c_str(),
+                t.met ? "yes" : "NO", t.margin.c_str());
+}
+
+Setup parse(int argc, char** argv)
+{
+  Setup s;
+  bool box_given = false;
+  for(int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if(i + 1 >= argc) {
+        std::cerr << "spring_motion_bench: " << a << " needs a value\n";
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if(a == "--quick")
+      s.quick = true;
+    else if(a == "--box") {
+      s.box = std::stoul(value());
+      box_given = true;
+    } else if(a == "--repeats")
+      s.repeats = std::stoi(value());
+    else if(a == "--cases") {
+      s.cases.clear();
+      std::stringstream in(value());
+      for(std::string m; std::getline(in, m, ',');)
+        s.cases.push_back(m);
+    } else {
+      std::cerr << "usage: spring_motion_bench [--quick] [--cases naca_coarse,naca_fine,wing,box] [--box N]"
+                   " [--repeats R]\n";
+      std::exit(a == "--help" ? 0 : 2);
+    }
+  }
+  if(s.quick && !box_given)
+    s.box = 16;
+  return s;
+}
+
+bool wanted(const Setup& s, const std::string& c)
+{
+  return std::find(s.cases.begin(), s.cases.end(), c) != s.cases.end();
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  const Setup setup = parse(argc, argv);
+  progress("measuring memory bandwidth (triad)");
+  const std::size_t triad_n = setup.quick ? (std::size_t(1) << 22) : (std::size_t(1) << 25);
+  const std::vector<double> bandwidth = {triad_bandwidth(1, triad_n), triad_bandwidth(2, triad_n)};
+  std::printf("SpringMotion benchmark%s. Triad bandwidth: %.2f GB/s (1 thread), %.2f GB/s (2 threads).\n",
+              setup.quick ? " (--quick)" : "", bandwidth[0] * 1e-9, bandwidth[1] * 1e-9);
+  std::vector<Row> rows;
+  if(wanted(setup, "naca_coarse")) {
+    progress("building the coarse NACA0012 mesh");
+    rows.push_back(measure(naca_case(false, setup), bandwidth));
+  }
+  if(wanted(setup, "naca_fine")) {
+    progress("building the fine NACA0012 mesh");
+    rows.push_back(measure(naca_case(true, setup), bandwidth));
+  }
+  if(wanted(setup, "wing")) {
+    Row r;
+    r.name = "wing 3D";
+    r.available = false;
+    r.note = "not available: no 3D wing mesh in this build";
+    rows.push_back(r);
+  }
+  if(wanted(setup, "box")) {
+    progress("building the structured box mesh, N = " + std::to_string(setup.box));
+    rows.push_back(measure(box_case(setup.box, setup), bandwidth));
+  }
+  print_table(rows);
+  print_targets(rows, setup.quick);
+  return 0;
+}

@@ -149,22 +149,22 @@ public:
   {
     history_[count_++ % window_] = update;
     last_ = update;
-    if(rule_ == Stopping_rule::max_update) {
-      estimate_ = update;
-      return update <= tol_;
-    }
     if(update == 0) {
       estimate_ = 0;
       return true;
     }
     if(count_ <= window_) {
       estimate_ = std::numeric_limits<double>::infinity();
-      return false;
+    } else {
+      // the change `window_` iterations ago sits where this one was just
+      // written before overwriting; we keep it in `oldest_`
+      const double q = std::pow(update / oldest_, 1.0 / double(window_));
+      estimate_ = q < 1 ? update * q / (1 - q) : std::numeric_limits<double>::infinity();
     }
-    // the change `window_` iterations ago sits where this one was just written
-    // before overwriting; we keep it in `oldest_`
-    const double q = std::pow(update / oldest_, 1.0 / double(window_));
-    estimate_ = q < 1 ? update * q / (1 - q) : std::numeric_limits<double>::infinity();
+    // Eq. 12 stops on the change alone, but the estimate is still reported:
+    // a slowly contracting sweep stops there with an error far above tol
+    if(rule_ == Stopping_rule::max_update)
+      return update <= tol_;
     return estimate_ <= tol_ && update <= tol_;
   }
   void before_next() { oldest_ = history_[count_ % window_]; }

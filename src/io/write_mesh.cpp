@@ -362,6 +362,11 @@ void write_mesh(const std::string& path, const Mesh_file& file, const std::vecto
                                 + ", expected 2 or 3");
 }
 
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write)
+{
+  write_atomically(path, write);
+}
+
 void write_pvd(const std::string& path, const std::vector<Pvd_entry>& entries)
 {
   write_atomically(path, [&entries](std::ostream& out) {

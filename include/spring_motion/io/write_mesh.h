@@ -6,6 +6,7 @@
 #include <spring_motion/Input_error.h>
 #include <spring_motion/io/read_mesh.h>
 
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -69,6 +70,13 @@ void write_mesh(const std::string& path, const Indexed_mesh<D>& mesh,
 void write_mesh(const std::string& path, const Mesh_file& file,
                 const std::vector<Data_array>& point_data = {},
                 const std::vector<Data_array>& cell_data = {});
+
+/// Calls `write` on a temporary file beside `path`, then renames it over
+/// `path`: the file the writers above use, for any other output (a JSON
+/// report). A failure (an exception from `write`, a failed write) removes the
+/// temporary file and leaves `path` as it was.
+/// \throws Input_error naming `path` when the file cannot be written.
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 /// One time step of a ParaView collection: `file` is the .vtu as the .pvd
 /// refers to it (ParaView resolves relative names from the .pvd's directory).

@@ -1,0 +1,43 @@
+// Copyright (c) 2026 SpringMotion developers.
+// Private to the spring-motion executable: the subcommands, each given its
+// arguments (after the command name) and the two output streams.
+#ifndef SPRING_MOTION_SRC_CLI_COMMANDS_H
+#define SPRING_MOTION_SRC_CLI_COMMANDS_H
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace spring_motion {
+namespace cli {
+
+/// Exit statuses of spring-motion (documented in docs/cli.md and --help).
+enum Exit_status : int
+{
+  exit_success = 0,        ///< done; `check`: the mesh is valid
+  exit_input_error = 1,    ///< bad input file, label, or output path: nothing written
+  exit_usage_error = 2,    ///< bad command line: nothing read or written
+  exit_invalid = 3,        ///< `deform`: a step inverted an element, outputs hold the last valid state;
+                           ///< `check`: the mesh has degenerate or inverted elements
+  exit_internal_error = 4  ///< a bug or out of memory: please report it
+};
+
+int deform_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err,
+                   bool err_is_terminal);
+int check_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err);
+int convert_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err);
+
+/// The --help texts.
+const char* main_help();
+const char* deform_help();
+const char* check_help();
+const char* convert_help();
+
+/// The message of a library `Error` without its " [source.h:123]" suffix,
+/// which means nothing to a user of the command.
+std::string without_source_location(const std::string& message);
+
+} // namespace cli
+} // namespace spring_motion
+
+#endif

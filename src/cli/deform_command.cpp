@@ -1,0 +1,377 @@
+// Copyright (c) 2026 SpringMotion developers.
+// spring-motion deform: read a mesh, move its moving boundary, write the result.
+#include "Arguments.h"
+#include "Displacement_file.h"
+#include "Mesh_setup.h"
+#include "Progress_bar.h"
+#include "commands.h"
+#include "output_files.h"
+
+#include <spring_motion/Error.h>
+#include <spring_motion/Input_error.h>
+#include <spring_motion/deform.h>
+#include <spring_motion/io/network_output.h>
+#include <spring_motion/io/read_mesh.h>
+#include <spring_motion/io/write_mesh.h>
+#include <spring_motion/motion/Pitch_motion.h>
+#include <spring_motion/stiffness/model_by_name.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+#include <filesystem>
+#include <optional>
+#include <ostream>
+#include <sstream>
+
+namespace spring_motion {
+namespace cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// What the command line asks for, checked before the mesh is read.
+struct Deform_settings
+{
+  std::string mesh_path;
+  std::optional<std::string> moving, fixed;
+  enum class Motion_kind { pitch, translate, displacement } motion = Motion_kind::pitch;
+  double pitch_deg = 0;
+  std::vector<double> center, axis, translation;
+  std::string displacement_path;
+  std::string model = "grid_scaled";
+  Deform_options options;
+  std::vector<Output_file> outputs;
+  std::size_t every = 1;
+  std::string report_path;
+  bool quiet = false, force_progress = false;
+};
+
+const std::vector<Option_spec>& deform_options()
+{
+  static const std::vector<Option_spec> specs{
+    {"moving"}, {"fixed"}, {"pitch"}, {"center"}, {"axis"}, {"translate"}, {"displacement"}, {"steps"},
+    {"model"}, {"solver"}, {"omega"}, {"tolerance"}, {"max-iterations"}, {"max-substep-halvings"},
+    {"threads"}, {"output", true, true}, {"every"}, {"report"}, {"quiet", false}, {"progress", false},
+    {"help", false}};
+  return specs;
+}
+
+Deform_settings parse_deform(const Arguments& a)
+{
+  Deform_settings s;
+  if(a.operands().size() != 1)
+    throw Usage_error(a.operands().empty() ? "expected a mesh file (MESH)"
+                                           : "expected one mesh file, found " + std::to_string(a.operands().size()) +
+                                               " operands: '" + a.operands()[0] + "', '" + a.operands()[1] + "'");
+  s.mesh_path = a.operands()[0];
+  s.moving = a.value("moving");
+  s.fixed = a.value("fixed");
+
+  const int motions = int(a.has("pitch")) + int(a.has("translate")) + int(a.has("displacement"));
+  if(motions != 1)
+    throw Usage_error(motions == 0 ? "expected a motion: --pitch DEG --center X,Y[,Z], --translate DX,DY[,DZ] or "
+                                     "--displacement FILE"
+                                   : "expected one motion, found several of --pitch, --translate, --displacement");
+  if(a.has("pitch")) {
+    s.motion = Deform_settings::Motion_kind::pitch;
+    s.pitch_deg = a.number("pitch", 0);
+    if(!a.has("center"))
+      throw Usage_error("--pitch needs --center X,Y (2D) or X,Y,Z (3D): the point the rotation turns about");
+    s.center = a.numbers("center", 2, 3);
+    s.axis = a.numbers("axis", 3, 3);
+    if(!s.axis.empty() && s.axis[0] == 0 && s.axis[1] == 0 && s.axis[2] == 0)
+      throw Usage_error("--axis: expected a non-zero vector, found 0,0,0");
+  } else {
+    if(a.has("center") || a.has("axis"))
+      throw Usage_error("--center and --axis go with --pitch only");
+    if(a.has("translate")) {
+      s.motion = Deform_settings::Motion_kind::translate;
+      s.translation = a.numbers("translate", 2, 3);
+    } else {
+      s.motion = Deform_settings::Motion_kind::displacement;
+      s.displacement_path = *a.value("displacement");
+    }
+  }
+  if(!s.moving && s.motion != Deform_settings::Motion_kind::displacement)
+    throw Usage_error("expected --moving REF[,REF...]: the boundary labels (numbers or names) that move");
+
+  s.options.number_of_steps = std::size_t(a.integer("steps", 100, 1, 100000000));
+  if(const auto model = a.value("model")) {
+    s.model = *model;
+    const auto& names = model_names();
+    if(std::find(names.begin(), names.end(), s.model) == names.end()) {
+      std::string valid;
+      for(const auto& n : names)
+        valid += (valid.empty() ? "" : ", ") + n;
+      throw Usage_error("--model: unknown stiffness model '" + s.model + "': expected one of " + valid);
+    }
+  }
+  const std::string solver = a.value("solver").value_or(a.has("omega") ? "sor" : "cg");
+  if(solver == "paper")
+    s.options.solver = Solver_options::paper();
+  else if(solver == "sor")
+    s.options.solver.method = Solver_method::sor;
+  else if(solver != "cg")
+    throw Usage_error("--solver: expected cg, sor or paper, found '" + solver + "'");
+  if(a.has("omega")) {
+    if(solver == "cg")
+      throw Usage_error("--omega is the relaxation factor of SOR: use it with --solver sor or paper");
+    const double omega = a.number("omega", 1);
+    if(!(omega > 0 && omega < 2))
+      throw Usage_error("--omega: expected a number in (0, 2), found '" + *a.value("omega") + "'");
+    s.options.solver.relaxation_factor = omega;
+  }
+  if(a.has("tolerance")) {
+    const double tol = a.number("tolerance", 0);
+    if(!(tol > 0))
+      throw Usage_error("--tolerance: expected a positive number, found '" + *a.value("tolerance") + "'");
+    s.options.solver.tolerance = tol;
+  }
+  s.options.solver.max_iterations =
+      std::size_t(a.integer("max-iterations", (long long)s.options.solver.max_iterations, 1, 1000000000));
+  s.options.max_substep_halvings = std::size_t(a.integer("max-substep-halvings", 0, 0, 20));
+  s.options.solver.threads = int(a.integer("threads", 0, 0, 1024));
+
+  for(const std::string& path : a.values("output"))
+    s.outputs.push_back(classify_output(path));
+  const bool has_pvd = std::any_of(s.outputs.begin(), s.outputs.end(),
+                                   [](const Output_file& o) { return o.kind == Output_file::Kind::pvd; });
+  if(a.has("every") && !has_pvd)
+    throw Usage_error("--every K sets the steps of a .pvd time series: expected an --output ending in .pvd");
+  s.every = std::size_t(a.integer("every", 1, 1, 100000000));
+  s.report_path = a.value("report").value_or("");
+  s.quiet = a.has("quiet");
+  s.force_progress = a.has("progress");
+  if(s.quiet && s.force_progress)
+    throw Usage_error("--quiet and --progress contradict each other");
+  return s;
+}
+
+template <int D>
+std::array<double, D> to_point(const std::vector<double>& v, const char* option)
+{
+  if(D == 2 && v.size() == 3 && v[2] != 0)
+    throw Usage_error(std::string("--") + option + ": the mesh is 2D, expected 2 numbers (or a third one equal to 0)");
+  if(D == 3 && v.size() != 3)
+    throw Usage_error(std::string("--") + option + ": the mesh is 3D, expected 3 numbers");
+  std::array<double, D> p;
+  for(int c = 0; c < D; ++c)
+    p[c] = v[std::size_t(c)];
+  return p;
+}
+
+// The frames of a .pvd series and the state the visitor shares with the run.
+template <int D>
+struct Run_context
+{
+  const Deform_settings* settings = nullptr;
+  const Mesh_setup<D>* setup = nullptr;
+  const Network_deformer<D>* deformer = nullptr;
+  Progress_bar* bar = nullptr;
+  Clock::time_point start;
+  std::vector<Pvd_series> series;
+};
+
+template <int D>
+struct Command_visitor
+{
+  Run_context<D>* context;
+  void on_start(const Deform_report&) {}
+  void on_step(const Step_report& step)
+  {
+    Run_context<D>& c = *context;
+    if(c.bar)
+      c.bar->update(step, std::chrono::duration<double>(Clock::now() - c.start).count());
+    const bool accepted = step.inverted == 0;
+    const bool last = step.step == c.settings->options.number_of_steps;
+    if(accepted && (step.step % c.settings->every == 0 || last))
+      for(auto& s : c.series)
+        s.add_frame(step.step, *c.setup, *c.deformer);
+  }
+};
+
+std::string summary_line(const Deform_report& r, const std::vector<Output_file>& outputs,
+                         const std::string& report_path, const std::vector<std::size_t>& frames)
+{
+  std::ostringstream out;
+  out.precision(4);
+  if(r.completed)
+    out << "completed " << r.number_of_steps << "/" << r.number_of_steps << " steps";
+  else
+    out << "stopped at step " << r.first_invalid->step << "/" << r.number_of_steps << ": it inverted "
+        << r.first_invalid->elements.size() << " element(s); kept the last valid state";
+  if(std::isfinite(r.final_angle_deg))
+    out << ", last valid angle " << std::fixed << std::setprecision(2) << r.final_angle_deg << " deg";
+  else
+    out << ", last valid fraction " << std::fixed << std::setprecision(3) << r.final_fraction << " of the motion";
+  std::size_t iterations = 0;
+  for(const auto& s : r.steps)
+    iterations += s.iterations;
+  out << std::setprecision(3) << ", worst R " << r.quality_moving.max << " near the moving boundary ("
+      << r.quality_all.max << " overall), min size ratio " << r.min_size_ratio << ", " << iterations
+      << " solver iterations, " << std::setprecision(2) << r.seconds_total << " s";
+  if(!r.converged)
+    out << ", SOME SOLVES DID NOT CONVERGE";
+  for(std::size_t i = 0; i < outputs.size(); ++i) {
+    out << (i == 0 ? "; wrote " : ", ") << outputs[i].path;
+    if(outputs[i].kind == Output_file::Kind::pvd)
+      out << " (" << frames[i] << " frames)";
+  }
+  if(!report_path.empty())
+    out << (outputs.empty() ? "; wrote " : ", ") << report_path;
+  return out.str();
+}
+
+template <int D, class Motion>
+int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Vertex_role> roles, const Motion& motion,
+               std::ostream& out, std::ostream& err, bool err_is_terminal)
+{
+  Network_deformer<D> deformer(setup.network, std::move(roles));
+  Progress_bar bar(err, !s.quiet && (err_is_terminal || s.force_progress), s.options.number_of_steps);
+  Run_context<D> context;
+  context.settings = &s;
+  context.setup = &setup;
+  context.deformer = &deformer;
+  context.bar = &bar;
+  context.start = Clock::now();
+  for(const auto& o : s.outputs)
+    if(o.kind == Output_file::Kind::pvd)
+      context.series.emplace_back(o.path, s.options.number_of_steps);
+  Deform_report report;
+  std::vector<std::string> written; // finished outputs, removed if a later one fails
+  try {
+    for(auto& series : context.series)
+      series.add_frame(0, setup, deformer);
+    report = with_model(s.model, [&](const auto& model) {
+      return deformer.run(motion, model, s.options, Command_visitor<D>{&context});
+    });
+    bar.clear();
+    std::vector<std::size_t> frames;
+    for(const auto& o : s.outputs) {
+      written.push_back(o.path);
+      if(o.kind == Output_file::Kind::pvd) {
+        auto it = std::find_if(context.series.begin(), context.series.end(),
+                               [&](const Pvd_series& p) { return p.path() == o.path; });
+        it->finish();
+        frames.push_back(it->frames());
+      } else {
+        write_final_mesh(o, setup, deformer);
+        frames.push_back(0);
+      }
+    }
+    if(!s.report_path.empty()) {
+      written.push_back(s.report_path);
+      write_file_atomically(s.report_path, [&](std::ostream& f) { write_report_json(report, f); });
+    }
+    out << summary_line(report, s.outputs, s.report_path, frames) << "\n";
+  } catch(...) {
+    bar.clear();
+    for(auto& series : context.series)
+      series.discard();
+    std::error_code ignored;
+    for(const auto& path : written)
+      fs::remove(path, ignored);
+    throw;
+  }
+  return report.completed ? exit_success : exit_invalid;
+}
+
+template <int D>
+int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& out, std::ostream& err,
+               bool err_is_terminal)
+{
+  if(s.model == "torsional" && D == 3)
+    throw Usage_error("--model torsional: the torsional model is implemented in 2D only; for a 3D mesh expected "
+                      "one of lineal, lineal_p2, blom, zeng_ethier, grid_scaled");
+  Mesh_setup<D> setup = make_mesh_setup<D>(s.mesh_path, file, true);
+  const std::vector<int> moving = s.moving ? resolve_labels(setup, "moving", *s.moving) : std::vector<int>{};
+  const std::vector<int> fixed = s.fixed ? resolve_labels(setup, "fixed", *s.fixed) : std::vector<int>{};
+  // The motions' checks that need the dimension.
+  std::optional<Pitch_motion<D>> pitch;
+  std::optional<Translation_motion<D>> translation;
+  std::optional<Displacement_motion<D>> displacement;
+  std::vector<char> prescribed;
+  if(s.motion == Deform_settings::Motion_kind::pitch) {
+    pitch.emplace(s.pitch_deg, to_point<D>(s.center, "center"));
+    if(!s.axis.empty()) {
+      if constexpr(D == 2) {
+        if(s.axis[0] != 0 || s.axis[1] != 0 || s.axis[2] <= 0)
+          throw Usage_error("--axis: a 2D mesh turns about +z (counter-clockwise positive), expected no --axis or "
+                            "0,0,1; for a clockwise pitch give a negative angle");
+      } else
+        pitch->axis = {s.axis[0], s.axis[1], s.axis[2]};
+    }
+  } else if(s.motion == Deform_settings::Motion_kind::translate) {
+    translation.emplace();
+    translation->displacement = to_point<D>(s.translation, "translate");
+  }
+  // Roles before reading a displacement file, which must then cover the moving set.
+  auto roles = assign_command_line_roles(setup, moving, fixed, s.fixed.has_value(), prescribed);
+  if(s.motion == Deform_settings::Motion_kind::displacement) {
+    const auto df = read_displacement_file<D>(s.displacement_path, file.vertex_ids);
+    displacement.emplace();
+    prescribed.assign(setup.network.number_of_vertices(), 0);
+    for(std::size_t k = 0; k < df.vertices.size(); ++k) {
+      const std::size_t v = df.vertices[k];
+      const std::string id = std::to_string(file.vertex_ids[v]);
+      if(setup.network.adjacency_offsets[v] == setup.network.adjacency_offsets[v + 1])
+        throw Input_error(df.path, df.lines[k], "vertex " + id + " belongs to no " + element_noun(D) +
+                                                    ": expected a vertex of the mesh's elements");
+      if(s.moving && roles[v] != Vertex_role::moving)
+        throw Input_error(df.path, df.lines[k], "vertex " + id + " is not on a moving boundary part (--moving " +
+                                                    *s.moving + "): expected moving vertices only");
+      const auto& p = setup.network.points[v];
+      const auto [it, inserted] = displacement->by_point.emplace(p, df.displacements[k]);
+      if(!inserted && it->second != df.displacements[k])
+        throw Input_error(df.path, df.lines[k], "vertex " + id + " lies at the same point as another listed vertex "
+                                                    "with a different displacement: expected one displacement per point");
+      prescribed[v] = 1;
+    }
+    if(s.moving) {
+      for(Index v = 0; v < roles.size(); ++v)
+        if(roles[v] == Vertex_role::moving && !prescribed[v])
+          throw Input_error(df.path, 0, "no line for moving vertex " + std::to_string(file.vertex_ids[v]) +
+                                            ": expected a displacement for every vertex of --moving " + *s.moving);
+    } else
+      roles = assign_command_line_roles(setup, moving, fixed, s.fixed.has_value(), prescribed);
+  }
+  check_roles(setup, roles);
+  try {
+    if(pitch)
+      return run_motion<D>(s, setup, std::move(roles), *pitch, out, err, err_is_terminal);
+    if(translation)
+      return run_motion<D>(s, setup, std::move(roles), *translation, out, err, err_is_terminal);
+    return run_motion<D>(s, setup, std::move(roles), *displacement, out, err, err_is_terminal);
+  } catch(const Error& e) {
+    // the library's own checks (a model's value, a non-finite position)
+    throw Input_error(s.mesh_path, 0, without_source_location(e.what()));
+  }
+}
+
+} // namespace
+
+int deform_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err,
+                   bool err_is_terminal)
+{
+  const Arguments a(arguments, deform_options());
+  if(a.has("help")) {
+    out << deform_help();
+    return exit_success;
+  }
+  const Deform_settings s = parse_deform(a);
+  check_outputs(s.mesh_path, s.outputs, s.report_path);
+  if(!s.displacement_path.empty() && same_file(s.displacement_path, s.report_path))
+    throw Input_error(s.report_path, 0, "the report would overwrite the displacement file: expected another path");
+  const Mesh_file file = read_mesh(s.mesh_path);
+  if(file.dimension == 2)
+    return run_deform<2>(s, file, out, err, err_is_terminal);
+  return run_deform<3>(s, file, out, err, err_is_terminal);
+}
+
+} // namespace cli
+} // namespace spring_motion

@@ -1,0 +1,64 @@
+// Copyright (c) 2026 SpringMotion developers.
+// spring-motion: the command-line tool. This file only dispatches to the
+// subcommands (commands.h) and turns exceptions into one-line messages and
+// exit statuses.
+#include "Arguments.h"
+#include "commands.h"
+
+#include <spring_motion/Error.h>
+#include <spring_motion/Input_error.h>
+
+#include <iostream>
+#include <new>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#ifndef SPRING_MOTION_VERSION
+#define SPRING_MOTION_VERSION "unknown"
+#endif
+
+int main(int argc, char** argv)
+{
+  using namespace spring_motion::cli;
+  std::ios::sync_with_stdio(false);
+  const std::vector<std::string> all(argv + 1, argv + argc);
+  const std::string command = all.empty() ? std::string() : all.front();
+  const std::vector<std::string> rest(all.empty() ? all.end() : all.begin() + 1, all.end());
+  try {
+    if(command.empty() || command == "--help" || command == "-h" || command == "help") {
+      std::cout << main_help();
+      return command.empty() ? exit_usage_error : exit_success;
+    }
+    if(command == "--version") {
+      std::cout << "spring-motion " << SPRING_MOTION_VERSION << "\n";
+      return exit_success;
+    }
+    if(command == "deform")
+      return deform_command(rest, std::cout, std::cerr, isatty(STDERR_FILENO) != 0);
+    if(command == "check")
+      return check_command(rest, std::cout, std::cerr);
+    if(command == "convert")
+      return convert_command(rest, std::cout, std::cerr);
+    std::cerr << "spring-motion: unknown command '" << command
+              << "': expected deform, check or convert (see 'spring-motion --help')\n";
+    return exit_usage_error;
+  } catch(const Usage_error& e) {
+    std::cerr << "spring-motion " << command << ": " << e.what() << " (see 'spring-motion " << command
+              << " --help')\n";
+    return exit_usage_error;
+  } catch(const spring_motion::Input_error& e) {
+    std::cerr << "spring-motion: " << e.what() << "\n";
+    return exit_input_error;
+  } catch(const spring_motion::Error& e) {
+    std::cerr << "spring-motion: " << without_source_location(e.what()) << "\n";
+    return exit_input_error;
+  } catch(const std::bad_alloc&) {
+    std::cerr << "spring-motion: out of memory\n";
+    return exit_internal_error;
+  } catch(const std::exception& e) {
+    std::cerr << "spring-motion: internal error: " << e.what() << "\n";
+    return exit_internal_error;
+  }
+}

@@ -1,0 +1,85 @@
+// Equiangle skewness R (paper Eq. 13, METHOD.md section 5) and its histograms.
+#include <spring_motion/skewness.h>
+
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+using namespace spring_motion;
+
+namespace {
+using P2 = std::array<double, 2>;
+using P3 = std::array<double, 3>;
+// R is a few atan2 and divisions on O(1) values: right to a few ulps
+constexpr double tol = 1e-14;
+} // namespace
+
+TEST_CASE("equiangle_skewness: hand-computed triangles (2D Eq. 13)", "[skewness]")
+{
+  // equilateral: every angle is Q_e = 60 degrees, both terms vanish
+  CHECK(equiangle_skewness(P2{0, 0}, P2{1, 0}, P2{0.5, std::sqrt(3.0) / 2}) == Approx(0).margin(tol));
+  // right isosceles, angles 90, 45, 45: (90 - 60)/(180 - 60) = 1/4 and (60 - 45)/60 = 1/4
+  CHECK(equiangle_skewness(P2{0, 0}, P2{1, 0}, P2{0, 1}) == Approx(0.25).epsilon(tol));
+  // the same triangle turned, scaled and listed clockwise: R depends on the angles only
+  CHECK(equiangle_skewness(P2{3, 1}, P2{3 - 2 * 0.6, 1 + 2 * 0.8}, P2{3 + 2 * 0.8, 1 + 2 * 0.6}) ==
+        Approx(0.25).epsilon(1e-13));
+  // obtuse isosceles (0,0), (2,0), (1,1/2): base angles atan(1/2), apex
+  // 180 - 2 atan(1/2); both terms equal 1 - atan(1/2)/(pi/3)
+  CHECK(equiangle_skewness(P2{0, 0}, P2{2, 0}, P2{1, 0.5}) == Approx(1 - std::atan(0.5) / (M_PI / 3)).epsilon(tol));
+  // 3-4-5: largest angle 90 gives 1/4, smallest atan(3/4) gives 1 - atan(3/4)/(pi/3) = 0.385...
+  CHECK(equiangle_skewness(P2{0, 0}, P2{4, 0}, P2{0, 3}) == Approx(1 - std::atan(0.75) / (M_PI / 3)).epsilon(tol));
+}
+
+TEST_CASE("equiangle_skewness: degenerate triangles give 1", "[skewness]")
+{
+  // collinear: angles 0, 180, 0, so (180 - 60)/(180 - 60) = 1
+  CHECK(equiangle_skewness(P2{0, 0}, P2{1, 0}, P2{2, 0}) == 1.0);
+  // collinear with the middle vertex listed first
+  CHECK(equiangle_skewness(P2{1, 1}, P2{0, 0}, P2{3, 3}) == 1.0);
+  // two coincident vertices: the angles are 0 (no 'angle' exists, and R must still say degenerate)
+  CHECK(equiangle_skewness(P2{0, 0}, P2{0, 0}, P2{1, 0}) == 1.0);
+  // nearly flat: close to 1 but below it
+  const double r = equiangle_skewness(P2{0, 0}, P2{2, 0}, P2{1, 1e-9});
+  CHECK(r < 1.0);
+  CHECK(r > 1 - 1e-8);
+}
+
+TEST_CASE("equiangle_skewness: tetrahedra (3D, dihedral angles)", "[skewness]")
+{
+  // regular tetrahedron: all six dihedral angles are arccos(1/3) = Q_e
+  CHECK(equiangle_skewness(P3{1, 1, 1}, P3{1, -1, -1}, P3{-1, 1, -1}, P3{-1, -1, 1}) == Approx(0).margin(tol));
+  // a flat tetrahedron (four coplanar points): dihedral angles 0 and 180
+  CHECK(equiangle_skewness(P3{0, 0, 0}, P3{1, 0, 0}, P3{0, 1, 0}, P3{1, 1, 0}) == 1.0);
+}
+
+TEST_CASE("skewness_histogram: ten bins [b/10, (b+1)/10), R = 1 in the last, over the selected elements",
+          "[skewness]")
+{
+  const std::vector<double> r{0.0, 0.05, 0.1, 0.25, 0.95, 1.0, 0.5};
+  const auto all = skewness_histogram(r, [](std::size_t) { return true; });
+  REQUIRE(all.fractions.size() == 10);
+  CHECK(all.count == 7);
+  const std::vector<double> expected{2.0 / 7, 1.0 / 7, 1.0 / 7, 0, 0, 1.0 / 7, 0, 0, 0, 2.0 / 7};
+  for(std::size_t b = 0; b < 10; ++b) {
+    INFO("bin " << b);
+    CHECK(all.fractions[b] == Approx(expected[b]).margin(1e-15));
+  }
+  CHECK(all.max == 1.0);
+  CHECK(all.mean == Approx((0.05 + 0.1 + 0.25 + 0.95 + 1.0 + 0.5) / 7).epsilon(1e-15));
+  // a subset: the even-numbered entries 0, 0.1, 0.95, 0.5
+  const auto even = skewness_histogram(r, [](std::size_t t) { return t % 2 == 0; });
+  CHECK(even.count == 4);
+  CHECK(even.fractions[0] == 0.25);
+  CHECK(even.fractions[1] == 0.25);
+  CHECK(even.fractions[5] == 0.25);
+  CHECK(even.fractions[9] == 0.25);
+  CHECK(even.max == 0.95);
+  // nothing selected: zero fractions, no division by zero
+  const auto none = skewness_histogram(r, [](std::size_t) { return false; });
+  CHECK(none.count == 0);
+  CHECK(none.mean == 0);
+  for(double f : none.fractions)
+    CHECK(f == 0);
+}

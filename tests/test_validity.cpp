@@ -1,0 +1,201 @@
+// Exact validity (validity.h, METHOD.md section 5) and deform()'s rollback:
+// the elements reported as inverted are exactly those whose CGAL::orientation,
+// computed here, differs from the initial one, and the mesh is left at the
+// last valid step.
+#include <spring_motion/spring_motion.h>
+
+#include "test_meshes.h"
+
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cmath>
+#include <iterator>
+#include <map>
+#include <vector>
+
+using namespace spring_motion;
+using namespace spring_motion_test;
+
+namespace {
+using P2 = std::array<double, 2>;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+CGAL::Orientation orientation_of(const std::array<P2, 3>& p)
+{
+  return CGAL::orientation(K::Point_2(p[0][0], p[0][1]), K::Point_2(p[1][0], p[1][1]), K::Point_2(p[2][0], p[2][1]));
+}
+} // namespace
+
+TEST_CASE("find_inverted_elements: flipped and flat elements, against CGAL::orientation", "[validity]")
+{
+  // a fan of six triangles around the centre vertex 6 of a hexagon
+  std::vector<P2> pts;
+  for(int k = 0; k < 6; ++k)
+    pts.push_back({std::cos(k * M_PI / 3), std::sin(k * M_PI / 3)});
+  pts.push_back({0, 0});
+  std::vector<std::array<Index, 3>> tris;
+  for(Index k = 0; k < 6; ++k)
+    tris.push_back({k, Index((k + 1) % 6), 6});
+  tris[3] = {tris[3][1], tris[3][0], 6}; // one clockwise element: the record keeps each one's own sign
+  const auto net = make_spring_network<2>(pts, tris);
+  const auto rec = record_orientations(net, net.points);
+  for(std::size_t t = 0; t < 6; ++t)
+    CHECK(rec.sign[t] == (t == 3 ? -1 : 1));
+
+  auto check_against_cgal = [&](const std::vector<P2>& x) {
+    std::vector<std::size_t> found;
+    const std::size_t n = find_inverted_elements(net, x, rec, std::back_inserter(found));
+    std::vector<std::size_t> expected;
+    for(std::size_t t = 0; t < 6; ++t) {
+      const std::array<P2, 3> p{x[tris[t][0]], x[tris[t][1]], x[tris[t][2]]};
+      const auto initial = orientation_of({pts[tris[t][0]], pts[tris[t][1]], pts[tris[t][2]]});
+      if(orientation_of(p) != initial) // zero orientation differs from both signs
+        expected.push_back(t);
+    }
+    CHECK(n == found.size());
+    CHECK(found == expected);
+    return found;
+  };
+  auto x = net.points;
+  CHECK(check_against_cgal(x).empty());
+  // the centre moved along the bisector of edge 0-1, whose distance from the
+  // centre is cos 30 deg = 0.866: at 0.8 nothing flips, at 1.0 triangle 0
+  // has flipped and its neighbours, still on the same side of their own
+  // outer edges, have not
+  x[6] = {0.8 * std::cos(M_PI / 6), 0.8 * std::sin(M_PI / 6)};
+  CHECK(check_against_cgal(x).empty());
+  x[6] = {1.0 * std::cos(M_PI / 6), 1.0 * std::sin(M_PI / 6)};
+  CHECK(check_against_cgal(x) == std::vector<std::size_t>{0});
+  // onto the midpoint of edge 0-1: rounding may leave it on either side of
+  // the line or on it; whatever the exact predicate says, the library agrees
+  x[6] = {0.5 * (pts[0][0] + pts[1][0]), 0.5 * (pts[0][1] + pts[1][1])};
+  check_against_cgal(x);
+  // exactly onto vertex 0: triangles 0 and 5 become flat (orientation zero) and count as inverted
+  x[6] = pts[0];
+  CHECK(check_against_cgal(x) == std::vector<std::size_t>{0, 5});
+  // far across: the centre beyond vertex 0 flips 0 and 5, keeps the rest
+  x[6] = {2.0, 0.0};
+  CHECK(check_against_cgal(x) == std::vector<std::size_t>{0, 5});
+}
+
+TEST_CASE("record_orientations: a degenerate input element is an error", "[validity][errors]")
+{
+  const auto net = make_spring_network<2>({{0, 0}, {1, 0}, {2, 0}, {0, 1}}, {{0, 1, 3}, {0, 1, 2}});
+  CHECK_THROWS_WITH(record_orientations(net, net.points), Catch::Contains("degenerate") && Catch::Contains("1"));
+}
+
+TEST_CASE("deform: pushing a vertex across its opposite edge flags exactly the flipped elements and rolls back",
+          "[validity][deform]")
+{
+  // A Mesh_2 domain; one interior vertex v moves, every other vertex is
+  // fixed, so the candidate positions of each step are known here exactly:
+  // only v moves, to p0 + (i/n) d.
+  CDT cdt;
+  make_square_with_hole(cdt);
+  const auto ext = extract_spring_network(cdt);
+  const auto& net = ext.network;
+  // the interior vertex closest to (1.2, 1.0)
+  Index v = 0;
+  double best = 1e300;
+  for(Index i = 0; i < net.number_of_vertices(); ++i)
+    if(!net.on_boundary[i]) {
+      const double d = std::hypot(net.points[i][0] - 1.2, net.points[i][1] - 1.0);
+      if(d < best) {
+        best = d;
+        v = i;
+      }
+    }
+  const P2 v0 = net.points[v];
+  // its neighbours: the farthest sets the length of the push, so v crosses
+  // the far side of its link; the nearest gives a push through a neighbour,
+  // which flips the two elements on the edge to it at once
+  double reach = 0, nearest = 1e300;
+  P2 towards{};
+  for(Index p = net.adjacency_offsets[v]; p < net.adjacency_offsets[v + 1]; ++p) {
+    const auto& q = net.points[net.adjacency[p]];
+    const double l = std::hypot(q[0] - v0[0], q[1] - v0[1]);
+    reach = std::max(reach, l);
+    if(l < nearest) {
+      nearest = l;
+      towards = {q[0] - v0[0], q[1] - v0[1]};
+    }
+  }
+  // (steps, push): small steps cross one edge first; a long step through a neighbour crosses two
+  const int setting = GENERATE(0, 1, 2);
+  std::size_t n = 12;
+  P2 d{1.5 * reach * std::cos(0.3), 1.5 * reach * std::sin(0.3)};
+  if(setting == 1) {
+    n = 3;
+    d = {2.5 * reach * std::cos(2.0), 2.5 * reach * std::sin(2.0)};
+  } else if(setting == 2) {
+    n = 2;
+    d = {1.3 * towards[0], 1.3 * towards[1]};
+  }
+  const Translation_motion<2> motion{d};
+  auto at_step = [&](std::size_t i) {
+    auto x = net.points;
+    x[v] = motion(v0, double(i) / double(n));
+    return x;
+  };
+  // the first step at which CGAL::orientation sees a flipped (or flat)
+  // element, and which elements: computed here, independently of the library
+  std::size_t first_bad = 0;
+  std::vector<std::size_t> flipped;
+  for(std::size_t i = 1; i <= n && first_bad == 0; ++i) {
+    const auto x = at_step(i);
+    for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
+      const auto& e = net.elements[t];
+      if(orientation_of({x[e[0]], x[e[1]], x[e[2]]}) !=
+         orientation_of({net.points[e[0]], net.points[e[1]], net.points[e[2]]}))
+        flipped.push_back(t);
+    }
+    if(!flipped.empty())
+      first_bad = i;
+  }
+  INFO("setting " << setting << ": first invalid step " << first_bad << " of " << n << ", " << flipped.size()
+                   << " flipped");
+  REQUIRE(first_bad >= 1);
+  if(setting == 2) // through the neighbour: both elements on the edge to it
+    CHECK(flipped.size() >= 2);
+
+  auto only_v_moves = [&](const Vertex_info<2>& info) {
+    return info.index == v ? Vertex_role::moving : Vertex_role::fixed;
+  };
+  Deform_options options;
+  options.number_of_steps = n;
+  CDT moved = cdt;
+  const auto report = deform(moved, only_v_moves, motion, Lineal_stiffness{}, options);
+  CHECK_FALSE(report.completed);
+  REQUIRE(report.first_invalid);
+  CHECK(report.first_invalid->step == first_bad);
+  CHECK(report.first_invalid->fraction == Approx(double(first_bad) / double(n)));
+  // element indices are in the order the traits list the domain faces,
+  // which is the order of the network extracted above
+  CHECK(report.first_invalid->elements == flipped);
+  CHECK(report.steps.size() == first_bad);
+  CHECK(report.steps.back().inverted == flipped.size());
+  CHECK(report.final_fraction == Approx(double(first_bad - 1) / double(n)));
+
+  // the mesh is at the last valid step: v exactly where the motion put it
+  // then, every other vertex unmoved, every domain face as oriented as before
+  const auto last_valid = at_step(first_bad - 1);
+  std::map<std::pair<double, double>, P2> expected;
+  for(Index i = 0; i < net.number_of_vertices(); ++i)
+    expected[{net.points[i][0], net.points[i][1]}] = last_valid[i];
+  auto a = moved.finite_vertices_begin();
+  std::size_t matched = 0;
+  for(auto b = cdt.finite_vertices_begin(); b != cdt.finite_vertices_end(); ++b, ++a) {
+    const auto it = expected.find({b->point().x(), b->point().y()});
+    if(it == expected.end())
+      continue; // a vertex no domain face uses
+    ++matched;
+    CHECK(a->point().x() == it->second[0]);
+    CHECK(a->point().y() == it->second[1]);
+  }
+  CHECK(matched == net.number_of_vertices());
+  for(auto f = moved.finite_faces_begin(); f != moved.finite_faces_end(); ++f)
+    if(f->is_in_domain())
+      CHECK(CGAL::orientation(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()) ==
+            CGAL::LEFT_TURN);
+}

@@ -10,6 +10,7 @@
 #include <spring_motion/Vertex_role.h>
 #include <spring_motion/internal/angles.h>
 #include <spring_motion/internal/assemble.h>
+#include <spring_motion/internal/free_system.h>
 #include <spring_motion/internal/linear_system.h>
 #include <spring_motion/motion/Motion_description.h>
 #include <spring_motion/skewness.h>
@@ -107,12 +108,13 @@ public:
     initial_measure_.resize(net_.number_of_elements());
     touches_moving_.assign(net_.number_of_elements(), 0);
     for(std::size_t t = 0; t < net_.number_of_elements(); ++t) {
-      initial_measure_[t] = internal::signed_measure(internal::points_of(net_, positions_, t));
+      initial_measure_[t] = scaled_measure(positions_, t);
       for(Index v : net_.elements[t])
         if(roles_[v] == Vertex_role::moving)
           touches_moving_[t] = 1;
     }
     increment_.assign(n, Point{});
+    previous_increment_.assign(n, Point{});
   }
 
   const Spring_network<D>& network() const { return net_; }
@@ -203,10 +205,9 @@ public:
   {
     const long m = long(net_.number_of_elements());
     double mn = std::numeric_limits<double>::infinity();
-#pragma omp parallel for reduction(min : mn) schedule(static) num_threads(internal::thread_count(threads))
+#pragma omp parallel for reduction(min : mn) schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
     for(long t = 0; t < m; ++t)
-      mn = std::min(mn, internal::signed_measure(internal::points_of(net_, positions_, std::size_t(t))) /
-                            initial_measure_[std::size_t(t)]);
+      mn = std::min(mn, scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)]);
     return mn;
   }
 
@@ -215,6 +216,20 @@ private:
   static double seconds_since(Clock::time_point t0)
   {
     return std::chrono::duration<double>(Clock::now() - t0).count();
+  }
+
+  // The element's signed measure with coordinates scaled by the power of two
+  // nearest 1/longest edge: the scaling is exact, so every ratio of measures
+  // is bitwise unchanged, and a tiny mesh's measures do not underflow to 0
+  // (which made min_size_ratio 0/0).
+  double scaled_measure(const std::vector<Point>& x, std::size_t t) const
+  {
+    auto p = internal::points_of(net_, x, t);
+    const int e = -std::ilogb(net_.longest_initial_edge);
+    for(auto& q : p)
+      for(auto& c : q)
+        c = std::ldexp(c, e);
+    return internal::signed_measure(p);
   }
 
   struct Attempt
@@ -233,6 +248,8 @@ private:
     const double t_start = t_;
     const auto saved_positions = positions_;
     const auto saved_increment = increment_;
+    const auto saved_previous = previous_increment_;
+    const History saved_history = history_;
     for(std::size_t level = 0;; ++level) {
       const std::size_t parts = std::size_t(1) << level;
       s.substeps = 0;
@@ -245,6 +262,8 @@ private:
         return true;
       positions_ = saved_positions;
       increment_ = saved_increment;
+      previous_increment_ = saved_previous;
+      history_ = saved_history;
       t_ = t_start;
       if(level == halvings) {
         s.substeps = parts; // the finest division tried
@@ -261,9 +280,20 @@ private:
     const std::size_t n = net_.number_of_vertices();
     auto t0 = Clock::now();
     std::vector<Point> delta(n, Point{});
-    if(options.solver.warm_start)
-      for(Index i : free_)
-        delta[i] = increment_[i];
+    if(options.solver.warm_start) {
+      const double h = target - t_, m = 0.5 * (target + t_);
+      if(options.solver.extrapolate && history_.count >= 2 && history_.m1 > history_.m2) {
+        // the increment per unit of motion fraction, extrapolated linearly
+        // from the last two steps to this step's midpoint
+        const double s = (m - history_.m1) / (history_.m1 - history_.m2);
+        const double a = h * (1 + s) / history_.h1, b = h * s / history_.h2;
+        for(Index i : free_)
+          for(int c = 0; c < D; ++c)
+            delta[i][c] = a * increment_[i][c] - b * previous_increment_[i][c];
+      } else
+        for(Index i : free_)
+          delta[i] = increment_[i];
+    }
     for(Index i : moving_) {
       const Point q = motion(net_.points[i], target);
       for(int c = 0; c < D; ++c) {
@@ -286,7 +316,7 @@ private:
     if(system_observer)
       system_observer(system_, free_, delta);
     t0 = Clock::now();
-    const Solve_report sr = internal::solve(net_, system_, free_, delta, options.solver);
+    const Solve_report sr = internal::solve(net_, system_, free_, delta, options.solver, free_system_);
     s.seconds_solve += seconds_since(t0);
     s.iterations += sr.iterations;
     s.converged = s.converged && sr.converged;
@@ -310,8 +340,14 @@ private:
     if(!failed.inverted.empty())
       return false;
     positions_.swap(candidate);
+    previous_increment_.swap(increment_);
     for(Index i : free_)
       increment_[i] = delta[i];
+    history_.h2 = history_.h1;
+    history_.m2 = history_.m1;
+    history_.h1 = target - t_;
+    history_.m1 = 0.5 * (target + t_);
+    ++history_.count;
     t_ = target;
     ++s.substeps;
     return true;
@@ -320,12 +356,19 @@ private:
   Spring_network<D> net_;
   std::vector<Vertex_role> roles_;
   std::vector<Index> free_, moving_, fixed_;
-  std::vector<Point> positions_, increment_;
+  std::vector<Point> positions_, increment_, previous_increment_;
+  // the fraction intervals (h) and their midpoints (m) of the last two accepted increments
+  struct History
+  {
+    double h1 = 0, h2 = 0, m1 = 0, m2 = 0;
+    std::size_t count = 0;
+  } history_;
   Orientation_record record_;
   std::vector<double> initial_measure_;
   std::vector<char> touches_moving_;
   std::vector<double> stiffness_, angle_scratch_;
   internal::Linear_system<D> system_;
+  internal::Free_system<D> free_system_; // ordering built on the first scalar solve
   double t_ = 0;
 };
 

@@ -65,7 +65,7 @@ std::vector<double> element_skewness(const Spring_network<D>& net, const std::ve
 {
   const long m = long(net.number_of_elements());
   std::vector<double> r(static_cast<std::size_t>(m));
-#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads))
+#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
   for(long t = 0; t < m; ++t) {
     const auto& e = net.elements[std::size_t(t)];
     if constexpr(D == 2)

@@ -93,7 +93,7 @@ std::size_t find_inverted_elements(const Spring_network<D>& net, const std::vect
   const long m = long(net.number_of_elements());
   std::vector<char> bad(std::size_t(m), 0);
   // thread-safe: the filtered predicates keep their rounding-mode state per call
-#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads))
+#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
   for(long t = 0; t < m; ++t)
     bad[std::size_t(t)] =
         internal::exact_orientation(internal::points_of(net, x, std::size_t(t))) != rec.sign[std::size_t(t)];

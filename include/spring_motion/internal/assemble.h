@@ -54,7 +54,7 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   if(kind != Angle_kind::none) {
     if(!by_face) {
       angles.resize(std::size_t(m) * E);
-#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads))
+#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
       for(long t = 0; t < m; ++t) {
         const auto a = element_edge_angles<D>(element_points(net, x, std::size_t(t)));
         std::copy(a.begin(), a.end(), angles.begin() + t * E);
@@ -62,7 +62,7 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
     } else if constexpr(D == 3) {
       const long nf = long(net.faces.size());
       angles.resize(std::size_t(nf) * 3);
-#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads))
+#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(nf)))
       for(long f = 0; f < nf; ++f) {
         const auto& F = net.faces[std::size_t(f)];
         const auto a = triangle_angles<3>(x[F[0]], x[F[1]], x[F[2]]);
@@ -73,7 +73,7 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   const long ne = long(net.number_of_edges());
   k.resize(std::size_t(ne));
   long bad = -1;
-#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads))
+#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(ne)))
   for(long e = 0; e < ne; ++e) {
     const auto& ed = net.edges[std::size_t(e)];
     double l2 = 0;
@@ -127,7 +127,7 @@ void assemble_system(const Spring_network<D>& net, const std::vector<typename Sp
   if constexpr(!element_model) {
     sys.weight.resize(net.adjacency.size());
     sys.diagonal.resize(n);
-#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads))
+#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, n))
     for(long i = 0; i < ln; ++i) {
       double d = 0;
       for(Index p = net.adjacency_offsets[std::size_t(i)]; p < net.adjacency_offsets[std::size_t(i) + 1]; ++p) {

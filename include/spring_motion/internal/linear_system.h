@@ -142,11 +142,19 @@ double scaled_residual(const Spring_network<D>& net, const Linear_system<D>& sys
 class Stopping_test
 {
 public:
-  explicit Stopping_test(const Solver_options& o) : rule_(o.stopping), tol_(o.tolerance) {}
+  /// `worst_ratio`: take q as the largest single-iteration ratio of the
+  /// window instead of its geometric mean, for iterations whose changes do not
+  /// shrink monotonically (conjugate gradients).
+  explicit Stopping_test(const Solver_options& o, bool worst_ratio = false)
+      : rule_(o.stopping), tol_(o.tolerance), worst_(worst_ratio)
+  {
+  }
 
   /// Feeds the max change of one iteration; true when the solve may stop.
   bool done(double update)
   {
+    if(count_ > 0)
+      ratio_[count_ % window_] = last_ > 0 ? update / last_ : std::numeric_limits<double>::infinity();
     history_[count_++ % window_] = update;
     last_ = update;
     if(update == 0) {
@@ -158,7 +166,8 @@ public:
     } else {
       // the change `window_` iterations ago sits where this one was just
       // written before overwriting; we keep it in `oldest_`
-      const double q = std::pow(update / oldest_, 1.0 / double(window_));
+      const double q = worst_ ? *std::max_element(ratio_.begin(), ratio_.end())
+                              : std::pow(update / oldest_, 1.0 / double(window_));
       estimate_ = q < 1 ? update * q / (1 - q) : std::numeric_limits<double>::infinity();
     }
     // Eq. 12 stops on the change alone, but the estimate is still reported:
@@ -175,7 +184,8 @@ private:
   static constexpr std::size_t window_ = 4;
   Stopping_rule rule_;
   double tol_;
-  std::array<double, window_> history_{};
+  bool worst_;
+  std::array<double, window_> history_{}, ratio_{};
   std::size_t count_ = 0;
   double oldest_ = 0, last_ = 0, estimate_ = std::numeric_limits<double>::infinity();
 };

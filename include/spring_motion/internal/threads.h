@@ -2,6 +2,8 @@
 #ifndef SPRING_MOTION_INTERNAL_THREADS_H
 #define SPRING_MOTION_INTERNAL_THREADS_H
 
+#include <cstddef>
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -19,6 +21,23 @@ inline int thread_count(int requested)
   (void)requested;
   return 1;
 #endif
+}
+
+/// Loops over fewer items than this run on one thread: a parallel region
+/// costs more than such a loop, and far more when the cores are shared with
+/// other processes (a descheduled thread stalls the region's barrier). Results
+/// never depend on it (every parallel loop is deterministic); tests lower it to
+/// 0 to exercise the parallel paths on small meshes.
+inline std::size_t& parallel_threshold()
+{
+  static std::size_t t = 16384;
+  return t;
+}
+
+/// The thread count for a loop over `items` items.
+inline int thread_count(int requested, std::size_t items)
+{
+  return items < parallel_threshold() ? 1 : thread_count(requested);
 }
 
 } // namespace internal

@@ -1,0 +1,491 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_INTERNAL_FREE_SYSTEM_H
+#define SPRING_MOTION_INTERNAL_FREE_SYSTEM_H
+
+#include <spring_motion/Error.h>
+#include <spring_motion/Solver_options.h>
+#include <spring_motion/Spring_network.h>
+#include <spring_motion/internal/linear_system.h>
+#include <spring_motion/internal/threads.h>
+
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/cuthill_mckee_ordering.hpp>
+#include <boost/graph/sequential_vertex_coloring.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <vector>
+
+namespace spring_motion {
+namespace internal {
+
+/// Rows per chunk of every reduction: partial results are formed per fixed
+/// chunk and added in chunk order, so sums do not depend on the thread count.
+constexpr std::size_t reduction_chunk = 1024;
+
+/// The scalar (edge-model) spring system restricted to the free vertices, in
+/// flat arrays ordered for speed: free vertices are numbered colour by colour
+/// (a greedy colouring of the free spring graph by Boost's
+/// `sequential_vertex_coloring`, no two neighbours share a colour), and within
+/// a colour in reverse Cuthill-McKee order (Boost's `cuthill_mckee_ordering`)
+/// for locality. Gauss-Seidel then runs in parallel over each colour, and
+/// gives the same result for any thread count: a row reads only rows of other
+/// colours. The ordering is computed once per network; `load` refills the
+/// values every step.
+template <int D>
+class Free_system
+{
+public:
+  using Row = std::array<double, D>;
+
+  bool empty() const { return order_.empty() && !built_; }
+  bool built() const { return built_; }
+  std::size_t rows() const { return order_.size(); }
+  std::size_t colours() const { return colour_offsets_.empty() ? 0 : colour_offsets_.size() - 1; }
+  std::size_t nonzeros() const { return col_.size(); }
+  const std::vector<Index>& order() const { return order_; }
+
+  /// Builds the ordering and the pattern for these free vertices.
+  void build(const Spring_network<D>& net, const std::vector<Index>& free_vertices)
+  {
+    const std::size_t n = net.number_of_vertices();
+    const std::size_t nf = free_vertices.size();
+    std::vector<Index> compact(n, none);
+    for(std::size_t k = 0; k < nf; ++k)
+      compact[free_vertices[k]] = Index(k);
+    using Graph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS>;
+    Graph g(nf);
+    for(std::size_t k = 0; k < nf; ++k) {
+      const Index i = free_vertices[k];
+      for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p) {
+        const Index j = net.adjacency[p];
+        if(compact[j] != none && compact[j] > k)
+          boost::add_edge(k, compact[j], g);
+      }
+    }
+    // reverse Cuthill-McKee: rcm[r] is the compact index at position r
+    std::vector<std::size_t> rcm(nf);
+    if(nf > 0)
+      boost::cuthill_mckee_ordering(g, rcm.rbegin());
+    std::vector<std::size_t> position(nf);
+    for(std::size_t r = 0; r < nf; ++r)
+      position[rcm[r]] = r;
+    // greedy colouring visiting the vertices in RCM order
+    std::vector<std::size_t> colour(nf, 0);
+    std::size_t ncolours = 0;
+    if(nf > 0)
+      ncolours = boost::sequential_vertex_coloring(
+          g, boost::make_iterator_property_map(rcm.begin(), boost::identity_property_map()),
+          boost::make_iterator_property_map(colour.begin(), boost::get(boost::vertex_index, g)));
+    std::vector<std::size_t> by(nf);
+    std::iota(by.begin(), by.end(), std::size_t(0));
+    std::sort(by.begin(), by.end(), [&](std::size_t a, std::size_t b) {
+      return colour[a] != colour[b] ? colour[a] < colour[b] : position[a] < position[b];
+    });
+    order_.resize(nf);
+    std::vector<Index> row_of(n, none);
+    for(std::size_t r = 0; r < nf; ++r) {
+      order_[r] = free_vertices[by[r]];
+      row_of[order_[r]] = Index(r);
+    }
+    colour_offsets_.assign(ncolours + 1, 0);
+    for(std::size_t k = 0; k < nf; ++k)
+      ++colour_offsets_[colour[k] + 1];
+    for(std::size_t c = 0; c < ncolours; ++c)
+      colour_offsets_[c + 1] += colour_offsets_[c];
+    // pattern: free neighbours by row, constrained neighbours apart
+    row_offsets_.assign(nf + 1, 0);
+    bnd_offsets_.assign(nf + 1, 0);
+    col_.clear();
+    src_.clear();
+    bnd_vertex_.clear();
+    bnd_src_.clear();
+    for(std::size_t r = 0; r < nf; ++r) {
+      const Index i = order_[r];
+      for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p) {
+        const Index j = net.adjacency[p];
+        if(row_of[j] != none) {
+          col_.push_back(row_of[j]);
+          src_.push_back(p);
+        } else {
+          bnd_vertex_.push_back(j);
+          bnd_src_.push_back(p);
+        }
+      }
+      row_offsets_[r + 1] = Index(col_.size());
+      bnd_offsets_[r + 1] = Index(bnd_vertex_.size());
+    }
+    val_.resize(col_.size());
+    inv_diag_.resize(nf);
+    diag_.resize(nf);
+    b_.resize(nf);
+    x_.resize(nf);
+    built_ = true;
+  }
+
+  /// Takes this step's values from `sys` and the initial iterate from x (free
+  /// entries: the start; constrained entries: the prescribed increments).
+  void load(const Linear_system<D>& sys, const Field<D>& x, int threads)
+  {
+    const long nf = long(order_.size());
+    const int nt = team(threads);
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long r = 0; r < nf; ++r) {
+      const std::size_t R = std::size_t(r);
+      for(Index q = row_offsets_[R]; q < row_offsets_[R + 1]; ++q)
+        val_[q] = sys.weight[src_[q]];
+      Row s{};
+      for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q) {
+        const double w = sys.weight[bnd_src_[q]];
+        for(int c = 0; c < D; ++c)
+          s[c] += w * x[bnd_vertex_[q]][c];
+      }
+      b_[R] = s;
+      diag_[R] = sys.diagonal[order_[R]];
+      inv_diag_[R] = 1.0 / diag_[R];
+      x_[R] = x[order_[R]];
+    }
+  }
+
+  /// Writes the solution into the free entries of x.
+  void store(Field<D>& x) const
+  {
+    for(std::size_t r = 0; r < order_.size(); ++r)
+      x[order_[r]] = x_[r];
+  }
+
+  /// One multicolour SOR sweep on the loaded system; returns the largest change.
+  double sor_sweep(double omega, int threads) { return sweep(x_, b_, omega, threads, true); }
+
+  /// Bytes one sweep must move at least: the pattern and values once, the
+  /// right-hand side and inverse diagonal once, the solution read and written.
+  double bytes_per_sweep() const
+  {
+    const double nf = double(order_.size()), nnz = double(col_.size());
+    return nnz * (sizeof(Index) + sizeof(double)) +
+           nf * (sizeof(Index) + sizeof(double) + D * sizeof(double) + 2.0 * D * sizeof(double));
+  }
+
+  /// Successive over-relaxation on the loaded system from the loaded start.
+  Solve_report solve_sor(const Solver_options& options)
+  {
+    check_options(options);
+    Solve_report report;
+    Stopping_test stop(options);
+    while(report.iterations < options.max_iterations) {
+      stop.before_next();
+      const double update = sor_sweep(options.relaxation_factor, options.threads);
+      ++report.iterations;
+      SPRING_MOTION_CHECK(std::isfinite(update), "the solver produced a non-finite value at sweep " << report.iterations);
+      if(stop.done(update)) {
+        report.converged = true;
+        break;
+      }
+    }
+    report.last_max_update = stop.last();
+    report.error_estimate = stop.estimate();
+    report.residual = scaled_residual(options.threads);
+    SPRING_MOTION_CHECK(std::isfinite(report.residual), "the solver produced a non-finite value");
+    return report;
+  }
+
+  /// Conjugate gradients preconditioned by a symmetric multicolour
+  /// Gauss-Seidel sweep, from the loaded start.
+  Solve_report solve_conjugate_gradient(const Solver_options& options)
+  {
+    check_options(options);
+    const int threads = options.threads;
+    const int nt = team(threads);
+    Solve_report report;
+    const long nf = long(order_.size());
+    r_.resize(order_.size());
+    z_.resize(order_.size());
+    p_.resize(order_.size());
+    q_.resize(order_.size());
+    // r = b - A x
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long k = 0; k < nf; ++k) {
+      const Row y = apply(x_, std::size_t(k));
+      for(int c = 0; c < D; ++c)
+        r_[std::size_t(k)][c] = b_[std::size_t(k)][c] - y[c];
+    }
+    const double r_max = max_abs(r_, threads);
+    SPRING_MOTION_CHECK(std::isfinite(r_max), "the solver's initial residual is not finite");
+    Stopping_test stop(options, true);
+    if(r_max > 0 && nf > 0) {
+      precondition(threads);
+      copy(z_, p_, threads);
+      double rz = dot(r_, z_, threads);
+      while(report.iterations < options.max_iterations) {
+        stop.before_next();
+#pragma omp parallel for schedule(static) num_threads(nt)
+        for(long k = 0; k < nf; ++k) {
+          const Row y = apply(p_, std::size_t(k));
+          for(int c = 0; c < D; ++c)
+            q_[std::size_t(k)][c] = y[c];
+        }
+        const double pq = dot(p_, q_, threads);
+        if(!(pq > 0)) // p = 0: the residual vanished exactly
+          break;
+        const double alpha = rz / pq;
+        const double update = axpy_max(alpha, threads);
+        ++report.iterations;
+        SPRING_MOTION_CHECK(std::isfinite(update), "the solver produced a non-finite value at iteration "
+                                                       << report.iterations);
+        if(stop.done(update)) {
+          report.converged = true;
+          break;
+        }
+        precondition(threads);
+        const double rz_new = dot(r_, z_, threads);
+        const double beta = rz_new / rz;
+        rz = rz_new;
+#pragma omp parallel for schedule(static) num_threads(nt)
+        for(long k = 0; k < nf; ++k)
+          for(int c = 0; c < D; ++c)
+            p_[std::size_t(k)][c] = z_[std::size_t(k)][c] + beta * p_[std::size_t(k)][c];
+      }
+    }
+    report.residual = scaled_residual(threads);
+    SPRING_MOTION_CHECK(std::isfinite(report.residual), "the solver produced a non-finite value");
+    if(!report.converged && report.iterations < options.max_iterations)
+      report.converged = report.residual == 0 || nf == 0 || r_max == 0;
+    report.last_max_update = stop.last();
+    report.error_estimate = report.converged && report.iterations == 0 ? 0 : stop.estimate();
+    return report;
+  }
+
+private:
+  static constexpr Index none = std::numeric_limits<Index>::max();
+
+  int team(int threads) const { return thread_count(threads, order_.size()); }
+
+  // (A x)_k = d_k x_k - sum_j w_kj x_j over free neighbours (constrained
+  // neighbours are in b)
+  Row apply(const std::vector<Row>& x, std::size_t k) const
+  {
+    Row s{};
+    for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q) {
+      const double w = val_[q];
+      const Row& xj = x[col_[q]];
+      for(int c = 0; c < D; ++c)
+        s[c] += w * xj[c];
+    }
+    Row y;
+    for(int c = 0; c < D; ++c)
+      y[c] = diag_[k] * x[k][c] - s[c];
+    return y;
+  }
+
+  // Gauss-Seidel over the colours in order (backward: in reverse order),
+  // in parallel within a colour. `update`: track the max change.
+  double sweep(std::vector<Row>& x, const std::vector<Row>& rhs, double omega, int threads, bool forward,
+               bool track = true)
+  {
+    const int nt = team(threads);
+    const std::size_t nc = colours();
+    double m = 0;
+    for(std::size_t cc = 0; cc < nc; ++cc) {
+      const std::size_t colour = forward ? cc : nc - 1 - cc;
+      const long first = long(colour_offsets_[colour]), last = long(colour_offsets_[colour + 1]);
+      if(track) {
+        double cm = 0;
+#pragma omp parallel for schedule(static) num_threads(nt) reduction(max : cm)
+        for(long k = first; k < last; ++k) {
+          const std::size_t K = std::size_t(k);
+          Row s = rhs[K];
+          for(Index q = row_offsets_[K]; q < row_offsets_[K + 1]; ++q) {
+            const double w = val_[q];
+            const Row& xj = x[col_[q]];
+            for(int c = 0; c < D; ++c)
+              s[c] += w * xj[c];
+          }
+          for(int c = 0; c < D; ++c) {
+            const double nv = (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
+            const double d = std::abs(nv - x[K][c]);
+            // NaN sticks: (d > cm) is false for NaN, so test the negation
+            if(!(d <= cm))
+              cm = std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
+            x[K][c] = nv;
+          }
+        }
+        sticky_max(m, cm);
+      } else {
+#pragma omp parallel for schedule(static) num_threads(nt)
+        for(long k = first; k < last; ++k) {
+          const std::size_t K = std::size_t(k);
+          Row s = rhs[K];
+          for(Index q = row_offsets_[K]; q < row_offsets_[K + 1]; ++q) {
+            const double w = val_[q];
+            const Row& xj = x[col_[q]];
+            for(int c = 0; c < D; ++c)
+              s[c] += w * xj[c];
+          }
+          for(int c = 0; c < D; ++c)
+            x[K][c] = s[c] * inv_diag_[K];
+        }
+      }
+    }
+    return m;
+  }
+
+  // z = M^{-1} r, M the symmetric Gauss-Seidel splitting of A in the
+  // multicolour order: a forward then a backward sweep on A z = r from z = 0.
+  void precondition(int threads)
+  {
+    const int nt = team(threads);
+    const long nf = long(order_.size());
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long k = 0; k < nf; ++k)
+      z_[std::size_t(k)] = Row{};
+    sweep(z_, r_, 1.0, threads, true, false);
+    sweep(z_, r_, 1.0, threads, false, false);
+  }
+
+  void copy(const std::vector<Row>& a, std::vector<Row>& b, int threads)
+  {
+    const int nt = team(threads);
+    const long nf = long(a.size());
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long k = 0; k < nf; ++k)
+      b[std::size_t(k)] = a[std::size_t(k)];
+  }
+
+  // Fixed-chunk reductions: the same partial sums in the same order for any
+  // thread count.
+  template <class F>
+  double chunked_sum(F&& f, int threads)
+  {
+    const std::size_t nf = order_.size();
+    const long chunks = long((nf + reduction_chunk - 1) / reduction_chunk);
+    partial_.assign(std::size_t(chunks), 0.0);
+    const int nt = team(threads);
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long ch = 0; ch < chunks; ++ch) {
+      const std::size_t b = std::size_t(ch) * reduction_chunk, e = std::min(nf, b + reduction_chunk);
+      double s = 0;
+      for(std::size_t k = b; k < e; ++k)
+        s += f(k);
+      partial_[std::size_t(ch)] = s;
+    }
+    double s = 0;
+    for(double v : partial_)
+      s += v;
+    return s;
+  }
+
+  double dot(const std::vector<Row>& a, const std::vector<Row>& b, int threads)
+  {
+    return chunked_sum(
+        [&](std::size_t k) {
+          double s = 0;
+          for(int c = 0; c < D; ++c)
+            s += a[k][c] * b[k][c];
+          return s;
+        },
+        threads);
+  }
+
+  double max_abs(const std::vector<Row>& a, int threads)
+  {
+    const std::size_t nf = a.size();
+    const long chunks = long((nf + reduction_chunk - 1) / reduction_chunk);
+    partial_.assign(std::size_t(chunks), 0.0);
+    const int nt = team(threads);
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long ch = 0; ch < chunks; ++ch) {
+      const std::size_t b = std::size_t(ch) * reduction_chunk, e = std::min(nf, b + reduction_chunk);
+      double m = 0;
+      for(std::size_t k = b; k < e; ++k)
+        for(int c = 0; c < D; ++c)
+          sticky_max(m, std::abs(a[k][c]));
+      partial_[std::size_t(ch)] = m;
+    }
+    double m = 0;
+    for(double v : partial_)
+      sticky_max(m, v);
+    return m;
+  }
+
+  // x += alpha p, r -= alpha q; returns max |alpha p|
+  double axpy_max(double alpha, int threads)
+  {
+    const std::size_t nf = order_.size();
+    const long chunks = long((nf + reduction_chunk - 1) / reduction_chunk);
+    partial_.assign(std::size_t(chunks), 0.0);
+    const int nt = team(threads);
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long ch = 0; ch < chunks; ++ch) {
+      const std::size_t b = std::size_t(ch) * reduction_chunk, e = std::min(nf, b + reduction_chunk);
+      double m = 0;
+      for(std::size_t k = b; k < e; ++k)
+        for(int c = 0; c < D; ++c) {
+          const double d = alpha * p_[k][c];
+          x_[k][c] += d;
+          r_[k][c] -= alpha * q_[k][c];
+          sticky_max(m, std::abs(d));
+        }
+      partial_[std::size_t(ch)] = m;
+    }
+    double m = 0;
+    for(double v : partial_)
+      sticky_max(m, v);
+    return m;
+  }
+
+  // max over rows and components of |x_k - local solve_k|: d_k^{-1} |(b - A x)_k|
+  double scaled_residual(int threads)
+  {
+    const std::size_t nf = order_.size();
+    const long chunks = long((nf + reduction_chunk - 1) / reduction_chunk);
+    partial_.assign(std::size_t(chunks), 0.0);
+    const int nt = team(threads);
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long ch = 0; ch < chunks; ++ch) {
+      const std::size_t b = std::size_t(ch) * reduction_chunk, e = std::min(nf, b + reduction_chunk);
+      double m = 0;
+      for(std::size_t k = b; k < e; ++k) {
+        const Row y = apply(x_, k);
+        for(int c = 0; c < D; ++c)
+          sticky_max(m, std::abs((b_[k][c] - y[c]) * inv_diag_[k]));
+      }
+      partial_[std::size_t(ch)] = m;
+    }
+    double m = 0;
+    for(double v : partial_)
+      sticky_max(m, v);
+    return m;
+  }
+
+  bool built_ = false;
+  std::vector<Index> order_, colour_offsets_;
+  std::vector<Index> row_offsets_, col_, src_;
+  std::vector<Index> bnd_offsets_, bnd_vertex_, bnd_src_;
+  std::vector<double> val_, diag_, inv_diag_, partial_;
+  std::vector<Row> b_, x_, r_, z_, p_, q_;
+};
+
+/// Solves a scalar system through `fs` (built on first use for these free
+/// vertices), block systems by the generic solvers.
+template <int D>
+Solve_report solve(const Spring_network<D>& net, const Linear_system<D>& sys, const std::vector<Index>& free_vertices,
+                   Field<D>& x, const Solver_options& options, Free_system<D>& fs)
+{
+  if(sys.block || options.ordering == Vertex_ordering::natural)
+    return solve(net, sys, free_vertices, x, options);
+  if(!fs.built())
+    fs.build(net, free_vertices);
+  fs.load(sys, x, options.threads);
+  const Solve_report r = options.method == Solver_method::sor ? fs.solve_sor(options)
+                                                             : fs.solve_conjugate_gradient(options);
+  fs.store(x);
+  return r;
+}
+
+} // namespace internal
+} // namespace spring_motion
+
+#endif

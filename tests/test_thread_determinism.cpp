@@ -1,0 +1,136 @@
+// A motion computed with 1 and with 2 threads must agree bit for bit: every
+// parallel loop either writes disjoint entries (elements, edges, rows of one
+// colour) or reduces over fixed chunks in a fixed order.
+#include <spring_motion/spring_motion.h>
+#include <spring_motion/internal/threads.h>
+
+#include "test_meshes.h"
+
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <vector>
+
+using namespace spring_motion;
+using namespace spring_motion_test;
+
+namespace {
+
+// Lowers the serial cut-off so that the small test meshes take the parallel
+// paths, and restores it.
+struct Force_parallel
+{
+  std::size_t saved = internal::parallel_threshold();
+  Force_parallel() { internal::parallel_threshold() = 0; }
+  ~Force_parallel() { internal::parallel_threshold() = saved; }
+};
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+template <int D>
+void require_identical(const Network_deformer<D>& a, const Deform_report& ra, const Network_deformer<D>& b,
+                       const Deform_report& rb)
+{
+  REQUIRE(ra.completed == rb.completed);
+  REQUIRE(ra.steps.size() == rb.steps.size());
+  for(std::size_t i = 0; i < ra.steps.size(); ++i) {
+    const auto& s = ra.steps[i];
+    const auto& t = rb.steps[i];
+    INFO("step " << s.step);
+    CHECK(s.iterations == t.iterations);
+    CHECK(same_bits(s.max_update, t.max_update));
+    CHECK(same_bits(s.residual, t.residual));
+    CHECK(same_bits(s.error_estimate, t.error_estimate));
+    CHECK(same_bits(s.max_skewness_all, t.max_skewness_all));
+    CHECK(same_bits(s.min_size_ratio, t.min_size_ratio));
+  }
+  CHECK(same_bits(ra.min_size_ratio, rb.min_size_ratio));
+  std::size_t differing = 0;
+  for(std::size_t i = 0; i < a.positions().size(); ++i)
+    for(int c = 0; c < D; ++c)
+      differing += !same_bits(a.positions()[i][c], b.positions()[i][c]);
+  CHECK(differing == 0);
+}
+
+template <int D, class Motion>
+void compare_threads(const Spring_network<D>& net, const std::vector<Vertex_role>& roles, const Motion& motion,
+                     Solver_options solver, std::size_t steps)
+{
+  Force_parallel force;
+  Deform_options options;
+  options.number_of_steps = steps;
+  options.solver = solver;
+  options.solver.threads = 1;
+  Network_deformer<D> one(net, roles);
+  const auto r1 = one.run(motion, Grid_scaled_stiffness{}, options);
+  options.solver.threads = 2;
+  Network_deformer<D> two(net, roles);
+  const auto r2 = two.run(motion, Grid_scaled_stiffness{}, options);
+  REQUIRE(r1.steps.size() == steps); // the runs did move the mesh
+  REQUIRE(r1.steps.back().iterations > 0);
+  require_identical(one, r1, two, r2);
+}
+
+// The unit cube in n^3 cubes of 6 tetrahedra, the centre cube removed and
+// its 8 corners moving.
+Spring_network<3> small_box(std::size_t n)
+{
+  const std::size_t M = n + 1, mid = n / 2;
+  std::vector<std::array<double, 3>> points;
+  for(std::size_t k = 0; k < M; ++k)
+    for(std::size_t j = 0; j < M; ++j)
+      for(std::size_t i = 0; i < M; ++i)
+        points.push_back({double(i) / double(n), double(j) / double(n), double(k) / double(n)});
+  auto id = [&](std::size_t i, std::size_t j, std::size_t k) { return Index((k * M + j) * M + i); };
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  std::vector<std::array<Index, 4>> tets;
+  for(std::size_t k = 0; k < n; ++k)
+    for(std::size_t j = 0; j < n; ++j)
+      for(std::size_t i = 0; i < n; ++i) {
+        if(i == mid && j == mid && k == mid)
+          continue;
+        for(const auto& p : perms) {
+          std::array<std::size_t, 3> v{i, j, k};
+          std::array<Index, 4> t;
+          t[0] = id(v[0], v[1], v[2]);
+          for(int s = 0; s < 3; ++s) {
+            ++v[std::size_t(p[s])];
+            t[std::size_t(s) + 1] = id(v[0], v[1], v[2]);
+          }
+          tets.push_back(t);
+        }
+      }
+  return make_spring_network<3>(std::move(points), std::move(tets));
+}
+
+} // namespace
+
+TEST_CASE("thread determinism: 2D NACA0012 pitch, default solver and SOR, 1 vs 2 threads bitwise",
+          "[determinism]")
+{
+  CDT cdt;
+  make_naca0012_mesh_2(cdt);
+  const auto net = extract_spring_network(cdt).network;
+  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
+                                    return is_on_naca0012_airfoil(p[0], p[1]);
+                                  }));
+  const Pitch_motion<2> motion(20, {0.25, 0.0});
+  SECTION("default solver") { compare_threads(net, roles, motion, Solver_options{}, 5); }
+  SECTION("SOR (the paper's solver)") { compare_threads(net, roles, motion, Solver_options::paper(), 2); }
+}
+
+TEST_CASE("thread determinism: 3D structured box, default solver and SOR, 1 vs 2 threads bitwise",
+          "[determinism]")
+{
+  const auto net = small_box(6);
+  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 3>& p) {
+                                    for(double c : p)
+                                      if(c < 1e-9 || c > 1 - 1e-9)
+                                        return false;
+                                    return true;
+                                  }));
+  Pitch_motion<3> motion(10, {0.5, 0.5, 0.5});
+  motion.axis = {0, 0, 1};
+  SECTION("default solver") { compare_threads(net, roles, motion, Solver_options{}, 3); }
+  SECTION("SOR") { compare_threads(net, roles, motion, Solver_options::paper(), 2); }
+}

@@ -37,7 +37,7 @@ int convert_command(const std::vector<std::string>& arguments, std::ostream& out
   const Output_file output = classify_output(a.operands()[1]);
   if(output.kind == Output_file::Kind::pvd)
     throw Input_error(output.path, 0, "a .pvd is a time series: expected .vtu or .mesh for one mesh");
-  check_outputs(in, {output}, "");
+  check_outputs({in}, {output}, "");
   const Mesh_file file = read_mesh(in);
   if(file.dimension == 2)
     write_mesh(output.path, file.mesh_2, {}, label_array(file.mesh_2));

@@ -251,6 +251,10 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
       return deformer.run(motion, model, s.options, Command_visitor<D>{&context});
     });
     bar.clear();
+    if(!report.completed) // the last valid state closes the series, whatever --every says
+      for(auto& series : context.series)
+        if(series.last_step() != report.first_invalid->step - 1)
+          series.add_frame(report.first_invalid->step - 1, setup, deformer);
     std::vector<std::size_t> frames;
     for(const auto& o : s.outputs) {
       written.push_back(o.path);
@@ -364,9 +368,10 @@ int deform_command(const std::vector<std::string>& arguments, std::ostream& out,
     return exit_success;
   }
   const Deform_settings s = parse_deform(a);
-  check_outputs(s.mesh_path, s.outputs, s.report_path);
-  if(!s.displacement_path.empty() && same_file(s.displacement_path, s.report_path))
-    throw Input_error(s.report_path, 0, "the report would overwrite the displacement file: expected another path");
+  std::vector<std::string> inputs{s.mesh_path};
+  if(!s.displacement_path.empty())
+    inputs.push_back(s.displacement_path);
+  check_outputs(inputs, s.outputs, s.report_path);
   const Mesh_file file = read_mesh(s.mesh_path);
   if(file.dimension == 2)
     return run_deform<2>(s, file, out, err, err_is_terminal);

@@ -46,7 +46,8 @@ bool same_file(const std::string& a, const std::string& b)
   return fs::absolute(a, error).lexically_normal() == fs::absolute(b, error).lexically_normal();
 }
 
-void check_outputs(const std::string& input, const std::vector<Output_file>& outputs, const std::string& report)
+void check_outputs(const std::vector<std::string>& inputs, const std::vector<Output_file>& outputs,
+                   const std::string& report)
 {
   std::vector<std::string> all;
   for(const auto& o : outputs)
@@ -54,8 +55,10 @@ void check_outputs(const std::string& input, const std::vector<Output_file>& out
   if(!report.empty())
     all.push_back(report);
   for(std::size_t i = 0; i < all.size(); ++i) {
-    if(same_file(all[i], input))
-      throw Input_error(all[i], 0, "this output is the input mesh, which is never modified: expected another path");
+    for(const auto& input : inputs)
+      if(same_file(all[i], input))
+        throw Input_error(all[i], 0, "this output is an input (" + input +
+                                       "), which is never modified: expected another path");
     for(std::size_t j = 0; j < i; ++j)
       if(same_file(all[i], all[j]))
         throw Input_error(all[i], 0, "given as two outputs: expected a path per output");

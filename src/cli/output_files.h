@@ -31,9 +31,10 @@ Output_file classify_output(const std::string& path);
 /// Whether two paths name the same existing file (or are the same path).
 bool same_file(const std::string& a, const std::string& b);
 
-/// Before anything is read: no output may be the input, two outputs may not
+/// Before anything is read: no output may be an input, two outputs may not
 /// share a path, and every output's directory must exist. Throws Input_error.
-void check_outputs(const std::string& input, const std::vector<Output_file>& outputs, const std::string& report);
+void check_outputs(const std::vector<std::string>& inputs, const std::vector<Output_file>& outputs,
+                   const std::string& report);
 
 /// The arrays written with a state of the mesh: point "displacement" from
 /// the initial points, cell "skewness" (R), "valid" (1, or 0 for an element
@@ -59,6 +60,8 @@ public:
   void discard();
   const std::string& path() const { return path_; }
   std::size_t frames() const { return entries_.size(); }
+  /// The step of the last frame added (none: -1 as a size_t).
+  std::size_t last_step() const { return entries_.empty() ? std::size_t(-1) : std::size_t(entries_.back().time); }
 
 private:
   std::string path_, stem_;

@@ -3,6 +3,7 @@
 #define SPRING_MOTION_SPRING_NETWORK_H
 
 #include <spring_motion/Error.h>
+#include <spring_motion/internal/angles.h>
 #include <spring_motion/internal/simplex_tables.h>
 #include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
 
@@ -247,12 +248,9 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
       net.edge_face_slot_offsets[e + 1] += net.edge_face_slot_offsets[e];
   }
 
-  for(const auto& e : net.edges) {
-    double l2 = 0;
-    for(int c = 0; c < D; ++c)
-      l2 += (net.points[e[0]][c] - net.points[e[1]][c]) * (net.points[e[0]][c] - net.points[e[1]][c]);
-    net.longest_initial_edge = std::max(net.longest_initial_edge, std::sqrt(l2));
-  }
+  for(const auto& e : net.edges)
+    net.longest_initial_edge =
+        std::max(net.longest_initial_edge, internal::distance<D>(net.points[e[0]], net.points[e[1]]));
   return net;
 }
 

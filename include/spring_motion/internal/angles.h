@@ -4,8 +4,10 @@
 
 #include <spring_motion/internal/simplex_tables.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace spring_motion {
 namespace internal {
@@ -34,6 +36,30 @@ template <int N>
 inline double norm(const std::array<double, N>& a)
 {
   return std::sqrt(dot<N>(a, a));
+}
+
+/// |a - b|. The plain sqrt of the sum of squares whenever that sum is a
+/// normal number (so results stay bitwise what they always were); when it
+/// underflows (edges below ~1e-154) the difference is rescaled by its largest
+/// component first, so a tiny but non-zero edge never gets length 0 and a
+/// 1/l in a stiffness model never divides by zero.
+template <int N>
+inline double distance(const std::array<double, N>& a, const std::array<double, N>& b)
+{
+  double l2 = 0;
+  for(int c = 0; c < N; ++c)
+    l2 += (a[c] - b[c]) * (a[c] - b[c]);
+  if(l2 >= std::numeric_limits<double>::min())
+    return std::sqrt(l2);
+  double big = 0;
+  for(int c = 0; c < N; ++c)
+    big = std::max(big, std::abs(a[c] - b[c]));
+  if(big == 0)
+    return 0;
+  double s = 0;
+  for(int c = 0; c < N; ++c)
+    s += ((a[c] - b[c]) / big) * ((a[c] - b[c]) / big);
+  return big * std::sqrt(s);
 }
 
 /// The angle between two vectors, in [0, pi]. atan2 of |u x v| and u.v stays

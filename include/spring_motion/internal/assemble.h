@@ -76,10 +76,7 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
 #pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(ne)))
   for(long e = 0; e < ne; ++e) {
     const auto& ed = net.edges[std::size_t(e)];
-    double l2 = 0;
-    for(int c = 0; c < D; ++c)
-      l2 += (x[ed[0]][c] - x[ed[1]][c]) * (x[ed[0]][c] - x[ed[1]][c]);
-    const double l = std::sqrt(l2);
+    const double l = distance<D>(x[ed[0]], x[ed[1]]); // > 0 for a tiny edge too
     // enough for any edge of a sane mesh; a wilder one takes the slow path
     std::array<double, 64> local;
     std::vector<double> spill;
@@ -98,7 +95,8 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
         buf[s] = angles[slots[off[std::size_t(e)] + s]];
       a = buf;
     }
-    const double v = model(l, a, na, ctx);
+    // a zero-length edge (coincident vertices) never reaches a model's 1/l
+    const double v = l > 0 ? model(l, a, na, ctx) : 0.0;
     k[std::size_t(e)] = v;
     if(!(v >= 0 && std::isfinite(v)) || l == 0) {
 #pragma omp critical(spring_motion_bad_stiffness)

@@ -19,7 +19,7 @@ struct Blom_semi_torsional_stiffness
     double s = 0;
     for(std::size_t m = 0; m < n; ++m)
       s += 1.0 / std::max(angles[m], 1e-200);
-    return internal::cap_stiffness(s / length);
+    return internal::capped_quotient(s, length);
   }
   Model_description description(int) const { return {"blom", {}}; }
 };

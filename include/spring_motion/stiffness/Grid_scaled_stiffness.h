@@ -33,9 +33,9 @@ struct Grid_scaled_stiffness
     for(std::size_t m = 0; m < n; ++m)
       s += internal::inverse_sin_squared(angles[m]);
     const double l = length / reference_length;
-    const double lambda = ctx.longest_initial_edge / length;
-    return internal::cap_stiffness(lambda * (std::pow(l, -alpha_for(ctx.dimension)) +
-                                             std::pow(s, beta_for(ctx.dimension))));
+    const double lambda = internal::capped_quotient(ctx.longest_initial_edge, length);
+    return internal::capped_product(lambda, internal::capped_pow(l, -alpha_for(ctx.dimension)) +
+                                                internal::capped_pow(s, beta_for(ctx.dimension)));
   }
   Model_description description(int dimension) const
   {

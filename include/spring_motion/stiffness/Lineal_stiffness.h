@@ -17,7 +17,7 @@ struct Lineal_stiffness
   Angle_kind angle_kind(int) const { return Angle_kind::none; }
   double operator()(double length, const double*, std::size_t, const Stiffness_context&) const
   {
-    return internal::cap_stiffness(std::pow(length, -exponent));
+    return internal::capped_pow(length, -exponent);
   }
   Model_description description(int) const { return {"lineal", {{"exponent", exponent}}}; }
 };

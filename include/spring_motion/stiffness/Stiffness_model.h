@@ -72,6 +72,35 @@ inline double inverse_sin_squared(double theta)
 
 inline double cap_stiffness(double k) { return std::min(k, max_stiffness); }
 
+// The capped operations below give min(result, max_stiffness) without ever
+// computing an overflowing intermediate (an overflow is an FE_OVERFLOW trap
+// under feenableexcept even when the cap would clip it). Within the cap they
+// return exactly what the plain operation returns.
+
+/// min(x^e, max_stiffness) for x >= 0.
+inline double capped_pow(double x, double e)
+{
+  if(x == 0)
+    return e > 0 ? 0.0 : (e == 0 ? 1.0 : max_stiffness);
+  if(e * std::log(x) >= std::log(max_stiffness))
+    return max_stiffness;
+  return std::min(std::pow(x, e), max_stiffness);
+}
+/// min(a / b, max_stiffness) for a >= 0, b > 0.
+inline double capped_quotient(double a, double b)
+{
+  if(a / max_stiffness >= b)
+    return max_stiffness;
+  return std::min(a / b, max_stiffness);
+}
+/// min(a b, max_stiffness) for a, b >= 0 and finite.
+inline double capped_product(double a, double b)
+{
+  if(b > 0 && a >= max_stiffness / b)
+    return max_stiffness;
+  return std::min(a * b, max_stiffness);
+}
+
 template <class Model, class = void>
 struct Has_description : std::false_type {};
 template <class Model>

@@ -33,7 +33,7 @@ struct Torsional_stiffness
   }
   double operator()(double length, const double*, std::size_t, const Stiffness_context&) const
   {
-    return internal::cap_stiffness(std::pow(length, -lineal_exponent));
+    return internal::capped_pow(length, -lineal_exponent);
   }
 
   /// Rows of R: the gradient of each interior angle with respect to
@@ -65,6 +65,15 @@ struct Torsional_stiffness
   /// Adds R^T C R (6x6, row-major, coordinates ordered x0 y0 x1 y1 x2 y2) to K.
   void add_element_matrix(const std::array<std::array<double, 2>, 3>& p, double* K) const
   {
+    // R grows like 1/length and C is at most 1e200 (inverse_sin_squared):
+    // C R^T R stays finite for edges longer than ~1e-50. A shorter edge would
+    // overflow or, once its squared length underflows, divide by zero.
+    for(int a = 0; a < 3; ++a) {
+      const double dx = p[(a + 1) % 3][0] - p[a][0], dy = p[(a + 1) % 3][1] - p[a][1];
+      SPRING_MOTION_CHECK(dx * dx + dy * dy >= 1e-100,
+                          "the torsional model needs edges longer than 1e-50 (found one of squared length "
+                              << dx * dx + dy * dy << "): scale the mesh");
+    }
     const auto R = angle_gradients(p);
     const auto theta = internal::triangle_angles<2>(p[0], p[1], p[2]);
     for(int a = 0; a < 3; ++a) {

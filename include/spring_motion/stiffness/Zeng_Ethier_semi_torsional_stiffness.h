@@ -17,7 +17,7 @@ struct Zeng_Ethier_semi_torsional_stiffness
   Angle_kind angle_kind(int dimension) const { return dimension == 2 ? Angle_kind::element : angles_3d; }
   double operator()(double length, const double* angles, std::size_t n, const Stiffness_context&) const
   {
-    double s = 1.0 / length;
+    double s = internal::capped_quotient(1.0, length);
     for(std::size_t m = 0; m < n; ++m)
       s += internal::inverse_sin_squared(angles[m]);
     return internal::cap_stiffness(s);

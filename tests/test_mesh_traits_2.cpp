@@ -6,6 +6,8 @@
 
 #include "test_meshes.h"
 
+#include <spring_motion/io/read_mesh.h>
+
 #include <catch2/catch.hpp>
 
 #include <CGAL/Surface_mesh.h>
@@ -17,6 +19,7 @@
 #include <list>
 #include <map>
 #include <set>
+#include <string>
 #include <vector>
 
 using namespace spring_motion;
@@ -281,4 +284,50 @@ TEST_CASE("mesh traits: a Surface_mesh in a tilted plane moves within its plane"
     worst = std::max({worst, std::abs(s.x() - shift.x()), std::abs(s.y() - shift.y()), std::abs(s.z() - shift.z())});
   }
   CHECK(worst < 1e-12);
+}
+
+TEST_CASE("mesh traits: the Medit file in data/ as Indexed_mesh and as Surface_mesh moves alike", "[mesh_traits][data]")
+{
+  // data/square_hole_2d.mesh (made by Gmsh from data/square_hole_2d.geo):
+  // the hole's edges carry reference 2
+  const auto file = read_mesh(std::string(SPRING_MOTION_TEST_DATA_DIR) + "/../../data/square_hole_2d.mesh");
+  REQUIRE(file.dimension == 2);
+  Indexed_mesh<2> indexed = file.mesh_2;
+  Mesh_2d sm;
+  for(const auto& p : indexed.points)
+    sm.add_vertex(K::Point_2(p[0], p[1]));
+  for(const auto& t : indexed.elements)
+    REQUIRE(sm.add_face(Mesh_2d::Vertex_index(t[0]), Mesh_2d::Vertex_index(t[1]), Mesh_2d::Vertex_index(t[2])) !=
+            Mesh_2d::null_face());
+  REQUIRE(by_coordinates(extract_spring_network(indexed).network) ==
+          by_coordinates(extract_spring_network(sm).network));
+
+  Deform_options options;
+  options.number_of_steps = 10;
+  options.solver.tolerance = 1e-14;
+  const Pitch_motion<2> motion(30, {0, 0});
+  const Indexed_mesh<2> before = indexed;
+  // by label in the file, and by position for the Surface_mesh, which has no labels
+  const auto r1 = deform(indexed, Moving_boundary_labels{{2}}, motion, Grid_scaled_stiffness{}, options);
+  auto hole = [](const P2& p) { return std::max(std::abs(p[0]), std::abs(p[1])) < 1; };
+  const auto r2 = deform(sm, moving_boundary_where(hole), motion, Grid_scaled_stiffness{}, options);
+  REQUIRE(r1.completed);
+  REQUIRE(r2.completed);
+  CHECK(r1.moving_vertices == r2.moving_vertices);
+  std::vector<char> on_rim(indexed.points.size(), 0);
+  for(std::size_t f = 0; f < before.boundary_facets.size(); ++f)
+    if(before.boundary_labels[f] == 2)
+      for(auto v : before.boundary_facets[f])
+        on_rim[v] = 1;
+  double worst = 0, on_hole = 0;
+  for(std::size_t i = 0; i < indexed.points.size(); ++i) {
+    const auto q = sm.point(Mesh_2d::Vertex_index(Index(i)));
+    worst = std::max({worst, std::abs(indexed.points[i][0] - q.x()), std::abs(indexed.points[i][1] - q.y())});
+    if(on_rim[i]) { // exactly at the rotated position: computed from the initial point
+      const auto target = motion(before.points[i], 1.0);
+      on_hole = std::max({on_hole, std::abs(indexed.points[i][0] - target[0]), std::abs(indexed.points[i][1] - target[1])});
+    }
+  }
+  CHECK(worst < 1e-12); // as in the tests above
+  CHECK(on_hole == 0);
 }

@@ -1,4 +1,5 @@
 #include <spring_motion/spring_motion.h>
+#include <spring_motion/stiffness/model_by_name.h>
 
 #include "test_meshes.h"
 
@@ -207,4 +208,32 @@ TEST_CASE("deform: free vertices that reach no constrained vertex are an error",
   auto roles = [](const Vertex_info<2>& v) { return v.index < 3 ? Vertex_role::moving : Vertex_role::free; };
   CHECK_THROWS_WITH(deform(mesh, roles, Translation_motion<2>{{0.1, 0}}, Lineal_stiffness{}),
                     Catch::Contains("connected to no constrained vertex"));
+}
+
+TEST_CASE("deform: a rigid translation of the whole boundary translates every vertex, with every model",
+          "[deform][models]")
+{
+  CDT cdt;
+  make_square_with_hole(cdt);
+  const CDT original = cdt;
+  const std::array<double, 2> d{-0.25, 0.4};
+  Deform_options options;
+  options.number_of_steps = 3;
+  // a uniform increment solves every model's system exactly (springs do not
+  // stretch, angles do not change, so the torsion terms vanish too): ask for
+  // a criterion at the round-off level
+  options.solver.tolerance = 1e-15;
+  for(const auto& name : model_names()) {
+    INFO("model " << name);
+    CDT moved = original;
+    const auto report = with_model(name, [&](const auto& model) {
+      return deform(moved, All_boundary_moving{}, Translation_motion<2>{d}, model, options);
+    });
+    REQUIRE(report.completed);
+    CHECK(report.converged);
+    double worst = 0;
+    for(const auto& [p0, p] : positions_by_initial_point(original, moved))
+      worst = std::max({worst, std::abs(p[0] - (p0.first + d[0])), std::abs(p[1] - (p0.second + d[1]))});
+    CHECK(worst < 1e-12); // round-off on coordinates of size 2
+  }
 }

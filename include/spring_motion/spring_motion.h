@@ -9,8 +9,10 @@
 #include <spring_motion/Vertex_role.h>
 #include <spring_motion/deform.h>
 #include <spring_motion/mesh_traits/Indexed_mesh.h>
+#include <spring_motion/mesh_traits/Mesh_complex_3_in_triangulation_3.h>
 #include <spring_motion/mesh_traits/Surface_mesh.h>
 #include <spring_motion/mesh_traits/Triangulation_2.h>
+#include <spring_motion/mesh_traits/Triangulation_3.h>
 #include <spring_motion/motion/Pitch_motion.h>
 #include <spring_motion/skewness.h>
 #include <spring_motion/stiffness/Blom_semi_torsional_stiffness.h>

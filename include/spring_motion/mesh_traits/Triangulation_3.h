@@ -1,0 +1,98 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_MESH_TRAITS_TRIANGULATION_3_H
+#define SPRING_MOTION_MESH_TRAITS_TRIANGULATION_3_H
+
+#include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
+
+#include <CGAL/Triangulation_3.h>
+#include <CGAL/number_utils.h>
+
+#include <array>
+#include <type_traits>
+#include <utility>
+
+namespace spring_motion {
+namespace internal {
+
+/// The bare point of a triangulation vertex and how to replace it keeping
+/// the rest: a regular triangulation (Mesh_3's) stores weighted points, and a
+/// moved vertex keeps its weight.
+template <class Tr>
+struct Triangulation_3_points
+{
+  using Point = typename Tr::Point;
+  using Gt = typename Tr::Geom_traits;
+  using Bare_point = typename Gt::Point_3;
+  static constexpr bool weighted = !std::is_same_v<Point, Bare_point>;
+
+  static std::array<double, 3> get(const Gt& gt, const Point& p)
+  {
+    const Bare_point& q = gt.construct_point_3_object()(p);
+    return {CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())};
+  }
+  static Point moved(const Point& old, const std::array<double, 3>& p)
+  {
+    const Bare_point q(p[0], p[1], p[2]);
+    if constexpr(weighted)
+      return Point(q, old.weight());
+    else
+      return q;
+  }
+};
+
+// Derived from some CGAL::Triangulation_3 (the base's lock parameter is not
+// recoverable from the derived class's typedefs, so match by conversion).
+template <class Gt, class Tds, class Lock>
+std::true_type derives_from_triangulation_3(const CGAL::Triangulation_3<Gt, Tds, Lock>*);
+std::false_type derives_from_triangulation_3(...);
+template <class T>
+constexpr bool is_triangulation_3 = decltype(derives_from_triangulation_3(std::declval<const T*>()))::value;
+
+} // namespace internal
+
+/// Any CGAL `Triangulation_3` and its derived classes (Delaunay, regular, the
+/// triangulation of a Mesh_3 complex). The elements are the finite cells; all
+/// of them count, so a triangulation used as a mesh of its convex hull. For a
+/// Mesh_3 result, whose domain is only the cells in the complex, use the
+/// `Mesh_complex_3_in_triangulation_3` traits instead.
+template <class Tr>
+struct Simplicial_mesh_traits<Tr, std::enable_if_t<internal::is_triangulation_3<Tr>>>
+{
+  static constexpr int dimension = 3;
+  using Vertex_handle = typename Tr::Vertex_handle;
+
+  explicit Simplicial_mesh_traits(const Tr& tr) : tr_(tr) {}
+
+  template <class F>
+  void for_each_vertex(F f) const
+  {
+    for(auto v : tr_.finite_vertex_handles())
+      f(Vertex_handle(v));
+  }
+
+  template <class F>
+  void for_each_element(F f) const
+  {
+    for(auto c : tr_.finite_cell_handles())
+      f(std::array<Vertex_handle, 4>{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)});
+  }
+
+  std::array<double, 3> point(Vertex_handle v) const
+  {
+    return internal::Triangulation_3_points<Tr>::get(tr_.geom_traits(), v->point());
+  }
+
+  void set_point(Tr&, Vertex_handle v, const std::array<double, 3>& p) const
+  {
+    // Moving points breaks the Delaunay (regular) property: after deform()
+    // the triangulation is a valid simplicial mesh, not one to insert() into.
+    v->set_point(internal::Triangulation_3_points<Tr>::moved(v->point(), p));
+  }
+
+private:
+  const Tr& tr_;
+};
+
+} // namespace spring_motion
+
+#endif

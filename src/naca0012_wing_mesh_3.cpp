@@ -1,0 +1,383 @@
+// Copyright (c) 2026 SpringMotion developers.
+//
+// The 3D test domains of METHOD.md section 6, meshed by CGAL Mesh_3. This is
+// the library's only Mesh_3 translation unit (Mesh_3 compiles slowly).
+//
+// How the wing domain is built, and why:
+//
+// * Input surface: one Surface_mesh with two components, the wing and the
+//   sphere; the domain is the region between them (Mesh_3's inside test
+//   counts ray crossings). The wing is the NACA0012 section (closed trailing
+//   edge, METHOD.md section 6) with `section_intervals` cosine-spaced
+//   intervals per surface, extruded over z in [-1, 1] in `span_intervals`
+//   strips, closed by flat tip caps (a fan from (0.4, 0): the section is
+//   convex). The sphere is an icosahedron subdivided `sphere_subdivisions`
+//   times (5120 facets for 4: neighbouring facets turn by about 4 degrees,
+//   so Mesh_3's facets, which are larger, follow it to the facet distance
+//   bound). Mesh_3 places boundary vertices on these input facets, so wing
+//   vertices lie on the piecewise-linear wing (within 1e-5 chord of the exact
+//   section for 100 intervals).
+// * Features: the trailing edge (x = 1, y = 0) and the two tip edges (the
+//   section polygon at z = -1 and z = 1) are given as polylines, so Mesh_3
+//   protects them with balls and keeps the sharp edges sharp. They meet at
+//   the two trailing-edge tip corners. Patch ids are set on the input
+//   facets (wing 1, sphere 2) and become the surface patch indices of the
+//   boundary facets; add_features() keeps them (detect_features() would
+//   renumber them).
+// * Sizes: h(p) = size_at_wing + size_growth d(p) for facets and cells, d
+//   the distance from p to the wing's bounding shape (the box of the
+//   section, exact in x and z, thickness from the section). Feature edges
+//   are sampled at size_at_trailing_edge everywhere (the tip edges turn
+//   sharply at the leading edge, where a coarser sampling would cut the
+//   nose). The facet distance bound facet_distance (1 + d)^2 makes the
+//   facets follow the leading edge's curvature and lets them grow to the
+//   sphere's 5120-facet approximation far away.
+// * Defaults (measured, see the header): tuned so that the node and
+//   tetrahedron counts land within 10% of the paper's 57924 and 308850.
+// * Determinism: Mesh_3 runs sequentially and make_mesh_3 reseeds CGAL's
+//   default random generator with 0; perturbation and exudation (Mesh_3's
+//   defaults) have no time limit, so they do not depend on the machine's
+//   speed.
+
+#include <spring_motion/domains/Naca0012_wing_mesh_3.h>
+
+#include <spring_motion/Error.h>
+#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <spring_motion/io/read_mesh.h>
+#include <spring_motion/io/write_mesh.h>
+#include <spring_motion/mesh_traits/Mesh_complex_3_in_triangulation_3.h>
+
+#include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/make_mesh_3.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unordered_map>
+#include <vector>
+
+namespace spring_motion {
+namespace {
+
+using K = Mesh_3_kernel;
+using Point = K::Point_3;
+using Surface = Mesh_3_surface;
+using Polyline = std::vector<Point>;
+using Criteria = CGAL::Mesh_criteria_3<Mesh_3_triangulation>;
+
+// Appends a closed triangle surface given by points and index triples, with one patch id.
+void add_component(Surface& s, const std::vector<Point>& pts, const std::vector<std::array<std::size_t, 3>>& tris,
+                   int patch)
+{
+  auto pid = s.add_property_map<Surface::Face_index, int>("f:patch_id", 0).first;
+  std::vector<Surface::Vertex_index> v;
+  v.reserve(pts.size());
+  for(const auto& p : pts)
+    v.push_back(s.add_vertex(p));
+  for(const auto& t : tris) {
+    const auto f = s.add_face(v[t[0]], v[t[1]], v[t[2]]);
+    SPRING_MOTION_CHECK(f != Surface::null_face(), "internal error: input surface is not a manifold");
+    pid[f] = patch;
+  }
+}
+
+// The icosahedron subdivided `levels` times, projected on the sphere.
+void sphere(const Point& c, double r, std::size_t levels, std::vector<Point>& pts,
+            std::vector<std::array<std::size_t, 3>>& tris)
+{
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  std::vector<std::array<double, 3>> u{{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                       {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  tris = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4}, {11, 10, 2},
+          {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9}, {4, 9, 5},
+          {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  auto unit = [](std::array<double, 3> a) {
+    const double n = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    return std::array<double, 3>{a[0] / n, a[1] / n, a[2] / n};
+  };
+  for(auto& a : u)
+    a = unit(a);
+  for(std::size_t l = 0; l < levels; ++l) {
+    std::map<std::pair<std::size_t, std::size_t>, std::size_t> mid;
+    auto midpoint = [&](std::size_t a, std::size_t b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      auto it = mid.find(key);
+      if(it != mid.end())
+        return it->second;
+      u.push_back(unit({u[a][0] + u[b][0], u[a][1] + u[b][1], u[a][2] + u[b][2]}));
+      mid.emplace(key, u.size() - 1);
+      return u.size() - 1;
+    };
+    std::vector<std::array<std::size_t, 3>> next;
+    for(const auto& f : tris) {
+      const std::size_t a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]), d = midpoint(f[2], f[0]);
+      next.push_back({f[0], a, d});
+      next.push_back({f[1], b, a});
+      next.push_back({f[2], d, b});
+      next.push_back({a, b, d});
+    }
+    tris = std::move(next);
+  }
+  pts.clear();
+  for(const auto& a : u)
+    pts.emplace_back(c.x() + r * a[0], c.y() + r * a[1], c.z() + r * a[2]);
+}
+
+// The closed section polygon, counter-clockwise from the trailing edge (1, 0):
+// upper surface to the leading edge, then the lower surface back.
+std::vector<std::array<double, 2>> naca_section(std::size_t n)
+{
+  std::vector<std::array<double, 2>> s;
+  for(std::size_t i = n; i >= 1; --i) {
+    const double x = 0.5 * (1 - std::cos(M_PI * double(i) / double(n)));
+    s.push_back({x, naca0012_half_thickness(x)});
+  }
+  s.push_back({0.0, 0.0});
+  for(std::size_t i = 1; i < n; ++i) {
+    const double x = 0.5 * (1 - std::cos(M_PI * double(i) / double(n)));
+    s.push_back({x, -naca0012_half_thickness(x)});
+  }
+  s[0] = {1.0, 0.0}; // exactly closed
+  return s;
+}
+
+// Distance from p to the wing's shape: exact in x and z, the section's half
+// thickness at the clamped x in y (enough for a size field).
+double wing_distance(const Point& p)
+{
+  const double x = p.x(), y = p.y(), z = p.z();
+  const double xc = std::min(1.0, std::max(0.0, x));
+  const double dx = x - xc;
+  const double dy = std::max(0.0, std::abs(y) - naca0012_half_thickness(xc));
+  const double dz = std::max(0.0, std::abs(z) - 1.0);
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+struct Graded_size
+{
+  double at_wing, growth;
+  template <class Index>
+  double operator()(const Point& p, int, const Index&) const { return at_wing + growth * wing_distance(p); }
+};
+struct Graded_distance
+{
+  double at_wing;
+  template <class Index>
+  double operator()(const Point& p, int, const Index&) const
+  {
+    const double d = 1 + wing_distance(p);
+    return at_wing * d * d;
+  }
+};
+
+std::uint64_t fnv1a(const std::string& s)
+{
+  std::uint64_t h = 1469598103934665603ull;
+  for(unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+// The complex as an Indexed_mesh<3>, through the C3T3 mesh traits.
+Indexed_mesh<3> to_indexed_mesh(const Mesh_3_c3t3& c3t3)
+{
+  using Traits = Simplicial_mesh_traits<Mesh_3_c3t3>;
+  using Vh = Traits::Vertex_handle;
+  Traits traits(c3t3);
+  Indexed_mesh<3> m;
+  std::unordered_map<Vh, std::uint32_t> index;
+  traits.for_each_element([&](const std::array<Vh, 4>& c) {
+    Indexed_mesh<3>::Element e;
+    for(int k = 0; k < 4; ++k) {
+      auto it = index.find(c[k]);
+      if(it == index.end()) {
+        it = index.emplace(c[k], std::uint32_t(m.points.size())).first;
+        m.points.push_back(traits.point(c[k]));
+      }
+      e[k] = it->second;
+    }
+    m.elements.push_back(e);
+    m.element_labels.push_back(1);
+  });
+  traits.for_each_labeled_facet([&](const std::array<Vh, 3>& f, int label) {
+    m.boundary_facets.push_back({index.at(f[0]), index.at(f[1]), index.at(f[2])});
+    m.boundary_labels.push_back(label);
+  });
+  m.label_names = {{body_patch, "wing"}, {outer_patch, "far_field"}};
+  return m;
+}
+
+void check_positive(double v, const char* name)
+{
+  SPRING_MOTION_CHECK(std::isfinite(v) && v > 0, name << " must be positive and finite, got " << v);
+}
+
+} // namespace
+
+std::string Naca0012_wing_mesh_3_options::key() const
+{
+  std::ostringstream s;
+  s.precision(17);
+  s << "section_intervals=" << section_intervals << " span_intervals=" << span_intervals
+    << " sphere_subdivisions=" << sphere_subdivisions << " far_field_radius=" << far_field_radius
+    << " size_at_wing=" << size_at_wing << " size_at_trailing_edge=" << size_at_trailing_edge
+    << " size_growth=" << size_growth << " facet_distance=" << facet_distance << " facet_angle=" << facet_angle
+    << " cell_radius_edge_ratio=" << cell_radius_edge_ratio << " cgal=" << CGAL_VERSION_NR;
+  return s.str();
+}
+
+void make_naca0012_wing_mesh_3(Mesh_3_c3t3& c3t3, const Naca0012_wing_mesh_3_options& o)
+{
+  SPRING_MOTION_CHECK(o.section_intervals >= 8, "section_intervals must be at least 8");
+  SPRING_MOTION_CHECK(o.span_intervals >= 1, "span_intervals must be at least 1");
+  SPRING_MOTION_CHECK(o.sphere_subdivisions <= 7, "sphere_subdivisions must be at most 7");
+  SPRING_MOTION_CHECK(o.far_field_radius > 2, "far_field_radius must exceed 2 chords");
+  check_positive(o.size_at_wing, "size_at_wing");
+  check_positive(o.size_at_trailing_edge, "size_at_trailing_edge");
+  check_positive(o.facet_distance, "facet_distance");
+  SPRING_MOTION_CHECK(o.size_growth >= 0, "size_growth must be >= 0");
+  SPRING_MOTION_CHECK(o.facet_angle > 0 && o.facet_angle <= 30, "facet_angle must be in (0, 30]");
+  SPRING_MOTION_CHECK(o.cell_radius_edge_ratio >= 2, "cell_radius_edge_ratio must be at least 2");
+
+  const auto sec = naca_section(o.section_intervals);
+  const std::size_t ns = sec.size(), nz = o.span_intervals;
+  std::vector<Point> pts;
+  std::vector<std::array<std::size_t, 3>> tris;
+  auto zk = [&](std::size_t k) { return -1.0 + 2.0 * double(k) / double(nz); };
+  for(std::size_t k = 0; k <= nz; ++k)
+    for(const auto& q : sec)
+      pts.emplace_back(q[0], q[1], k == nz ? 1.0 : zk(k));
+  auto at = [&](std::size_t s, std::size_t k) { return k * ns + (s % ns); };
+  for(std::size_t k = 0; k < nz; ++k)
+    for(std::size_t s = 0; s < ns; ++s) {
+      // outward: the section turns counter-clockwise, z goes up
+      tris.push_back({at(s, k), at(s + 1, k), at(s + 1, k + 1)});
+      tris.push_back({at(s, k), at(s + 1, k + 1), at(s, k + 1)});
+    }
+  const std::size_t bottom = pts.size(), top = bottom + 1;
+  pts.emplace_back(0.4, 0.0, -1.0);
+  pts.emplace_back(0.4, 0.0, 1.0);
+  for(std::size_t s = 0; s < ns; ++s) {
+    tris.push_back({bottom, at(s + 1, 0), at(s, 0)});
+    tris.push_back({top, at(s, nz), at(s + 1, nz)});
+  }
+  Surface surface;
+  add_component(surface, pts, tris, body_patch);
+  sphere(Point(0.5, 0, 0), o.far_field_radius, o.sphere_subdivisions, pts, tris);
+  add_component(surface, pts, tris, outer_patch);
+
+  std::vector<Polyline> features;
+  Polyline te;
+  for(std::size_t k = 0; k <= nz; ++k)
+    te.emplace_back(1.0, 0.0, k == nz ? 1.0 : zk(k));
+  features.push_back(te);
+  for(const double z : {-1.0, 1.0}) {
+    Polyline tip;
+    for(const auto& q : sec)
+      tip.emplace_back(q[0], q[1], z);
+    tip.push_back(tip.front()); // closed, through the trailing-edge corner
+    features.push_back(tip);
+  }
+
+  Mesh_3_domain domain(surface);
+  domain.add_features(features.begin(), features.end());
+  namespace p = CGAL::parameters;
+  const Graded_size size{o.size_at_wing, o.size_growth};
+  const Graded_size edge{o.size_at_trailing_edge, 0.0};
+  Criteria criteria(p::edge_size = edge, p::facet_angle = o.facet_angle, p::facet_size = size,
+                    p::facet_distance = Graded_distance{o.facet_distance},
+                    p::cell_radius_edge_ratio = o.cell_radius_edge_ratio, p::cell_size = size);
+  c3t3 = CGAL::make_mesh_3<Mesh_3_c3t3>(domain, criteria);
+}
+
+Indexed_mesh<3> naca0012_wing_mesh_3(const Naca0012_wing_mesh_3_options& options, const std::string& cache_dir,
+                                     bool* generated, double* seconds)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  auto done = [&](bool gen) {
+    if(generated)
+      *generated = gen;
+    if(seconds)
+      *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  const std::string key = options.key();
+  std::string path;
+  if(!cache_dir.empty()) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/naca0012_wing_%016llx.mesh", (unsigned long long)fnv1a(key));
+    path = cache_dir + name;
+    std::ifstream in(path);
+    std::string first;
+    if(in && std::getline(in, first) && first == "# naca0012_wing_mesh_3 " + key) {
+      in.close();
+      auto file = read_mesh(path);
+      SPRING_MOTION_CHECK(file.dimension == 3, "cached wing mesh " << path << " is not a 3D mesh");
+      done(false);
+      return std::move(file.mesh_3);
+    }
+  }
+  Mesh_3_c3t3 c3t3;
+  make_naca0012_wing_mesh_3(c3t3, options);
+  Indexed_mesh<3> mesh = to_indexed_mesh(c3t3);
+  done(true);
+  if(!path.empty()) {
+    const std::string tmp = path + ".tmp";
+    {
+      std::ofstream out(tmp);
+      out << "# naca0012_wing_mesh_3 " << key << "\n";
+      write_medit(mesh, out);
+      SPRING_MOTION_CHECK(out.good(), "cannot write the wing mesh cache " << tmp);
+    }
+    SPRING_MOTION_CHECK(std::rename(tmp.c_str(), path.c_str()) == 0, "cannot rename " << tmp << " to " << path);
+  }
+  return mesh;
+}
+
+bool is_on_naca0012_wing(double x, double y, double z)
+{
+  // the sphere is at least 13 chords away from the wing's bounding box
+  return x > -1 && x < 2 && std::abs(y) < 1 && std::abs(z) < 2;
+}
+
+void make_box_with_hole_mesh_3(Mesh_3_c3t3& c3t3, const Box_with_hole_mesh_3_options& o)
+{
+  check_positive(o.inner, "inner");
+  check_positive(o.size, "size");
+  SPRING_MOTION_CHECK(o.outer > o.inner, "the outer box must contain the hole");
+  Surface surface;
+  std::vector<Polyline> features;
+  for(const auto& [h, patch] : {std::make_pair(o.inner, body_patch), std::make_pair(o.outer, outer_patch)}) {
+    std::vector<Point> pts;
+    for(int i = 0; i < 8; ++i)
+      pts.emplace_back(i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h);
+    // six faces, outward, as two triangles each
+    const std::vector<std::array<std::size_t, 4>> quads{{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                                        {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    std::vector<std::array<std::size_t, 3>> tris;
+    for(const auto& q : quads) {
+      tris.push_back({q[0], q[1], q[2]});
+      tris.push_back({q[0], q[2], q[3]});
+    }
+    add_component(surface, pts, tris, patch);
+    for(int a = 0; a < 8; ++a)
+      for(int bit = 1; bit < 8; bit <<= 1)
+        if(!(a & bit))
+          features.push_back({pts[std::size_t(a)], pts[std::size_t(a | bit)]});
+  }
+  Mesh_3_domain domain(surface);
+  domain.add_features(features.begin(), features.end());
+  namespace p = CGAL::parameters;
+  Criteria criteria(p::edge_size = o.size, p::facet_angle = 25, p::facet_size = o.size,
+                    p::facet_distance = o.size / 10, p::cell_radius_edge_ratio = 3, p::cell_size = o.size);
+  c3t3 = CGAL::make_mesh_3<Mesh_3_c3t3>(domain, criteria);
+}
+
+} // namespace spring_motion

@@ -1,0 +1,120 @@
+// The 3D stiffness models on a reference tetrahedron, by hand.
+//
+// Reference: the trirectangular corner p0 = 0, p1 = e_x, p2 = e_y, p3 = e_z.
+//  - edges 0-1, 0-2, 0-3: length 1, dihedral angle pi/2 (sin^2 = 1);
+//  - edges 1-2, 1-3, 2-3: length sqrt 2, dihedral angle acos(1/sqrt 3)
+//    (cos^2 = 1/3, so 1/sin^2 = 3/2).
+// Face angles facing an edge (Zeng-Ethier's 3D choice):
+//  - edge 0-1 lies in faces 0-1-2 and 0-1-3, right isosceles triangles with
+//    the right angle at 0: the angle facing 0-1 is 45 degrees in both,
+//    1/sin^2 = 2 each;
+//  - edge 1-2 lies in face 0-1-2 (facing angle 90 degrees at 0: 1/sin^2 = 1)
+//    and in the equilateral face 1-2-3 (60 degrees: 1/sin^2 = 4/3).
+// The longest initial edge is l0 = sqrt 2 (the paper's lambda = l0 / l).
+#include <spring_motion/Spring_network.h>
+#include <spring_motion/internal/assemble.h>
+#include <spring_motion/stiffness/Blom_semi_torsional_stiffness.h>
+#include <spring_motion/stiffness/Grid_scaled_stiffness.h>
+#include <spring_motion/stiffness/Lineal_stiffness.h>
+#include <spring_motion/stiffness/Torsional_stiffness.h>
+#include <spring_motion/stiffness/Zeng_Ethier_semi_torsional_stiffness.h>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+using namespace spring_motion;
+
+namespace {
+
+using P3 = std::array<double, 3>;
+
+// k of edge a-b of the corner tetrahedron under `model`.
+struct Corner
+{
+  Spring_network<3> net = make_spring_network<3>({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 1, 2, 3}});
+  template <class Model>
+  std::vector<double> stiffness(const Model& model) const
+  {
+    Stiffness_context ctx;
+    ctx.dimension = 3;
+    ctx.longest_initial_edge = net.longest_initial_edge;
+    std::vector<double> k, scratch;
+    internal::compute_edge_stiffness(net, net.points, model, ctx, k, scratch, 1);
+    return k;
+  }
+  std::size_t edge(Index a, Index b) const
+  {
+    for(std::size_t e = 0; e < net.edges.size(); ++e)
+      if(net.edges[e][0] == a && net.edges[e][1] == b)
+        return e;
+    FAIL("no edge " << a << "-" << b);
+    return 0;
+  }
+};
+
+// The values combine a few correctly rounded operations and an angle good
+// to a few ulps: relative agreement to 1e-13 is round-off, not modelling.
+bool close(double a, double b) { return std::abs(a - b) <= 1e-13 * std::abs(b); }
+
+} // namespace
+
+TEST_CASE("3D stiffness: the corner's longest edge is l0 = sqrt 2", "[stiffness][3d]")
+{
+  Corner c;
+  CHECK(close(c.net.longest_initial_edge, std::sqrt(2.0)));
+}
+
+TEST_CASE("3D stiffness: lineal, k = 1/l", "[stiffness][3d]")
+{
+  Corner c;
+  const auto k = c.stiffness(Lineal_stiffness{});
+  CHECK(close(k[c.edge(0, 1)], 1.0));
+  CHECK(close(k[c.edge(1, 2)], 1 / std::sqrt(2.0)));
+  const auto k2 = c.stiffness(Lineal_stiffness{2.0});
+  CHECK(close(k2[c.edge(2, 3)], 0.5));
+}
+
+TEST_CASE("3D stiffness: Blom, k = (1/l) 1/theta with the dihedral angle", "[stiffness][3d]")
+{
+  Corner c;
+  const auto k = c.stiffness(Blom_semi_torsional_stiffness{});
+  CHECK(close(k[c.edge(0, 1)], 2 / M_PI));
+  CHECK(close(k[c.edge(1, 2)], 1 / (std::sqrt(2.0) * std::acos(1 / std::sqrt(3.0)))));
+}
+
+TEST_CASE("3D stiffness: Zeng-Ethier with face angles (default) and with dihedral angles", "[stiffness][3d]")
+{
+  Corner c;
+  const auto kf = c.stiffness(Zeng_Ethier_semi_torsional_stiffness{});
+  CHECK(close(kf[c.edge(0, 1)], 1 + 2 + 2));
+  CHECK(close(kf[c.edge(1, 2)], 1 / std::sqrt(2.0) + 1 + 4.0 / 3));
+  Zeng_Ethier_semi_torsional_stiffness dihedral;
+  dihedral.angles_3d = Angle_kind::element;
+  const auto kd = c.stiffness(dihedral);
+  CHECK(close(kd[c.edge(0, 1)], 1 + 1));
+  CHECK(close(kd[c.edge(1, 2)], 1 / std::sqrt(2.0) + 1.5));
+}
+
+TEST_CASE("3D stiffness: grid-scaled, alpha = 1, beta = 3, dihedral angles, lambda = l0/l", "[stiffness][3d]")
+{
+  Corner c;
+  Grid_scaled_stiffness model;
+  CHECK(model.alpha_for(3) == 1.0);
+  CHECK(model.beta_for(3) == 3.0);
+  const auto k = c.stiffness(model);
+  // edge 0-1: lambda = sqrt 2, 1/l = 1, (1/sin^2)^3 = 1
+  CHECK(close(k[c.edge(0, 1)], std::sqrt(2.0) * (1 + 1)));
+  // edge 1-2: lambda = 1, 1/l = 1/sqrt 2, (3/2)^3 = 27/8
+  CHECK(close(k[c.edge(1, 2)], 1 / std::sqrt(2.0) + 27.0 / 8));
+  // a reference length of 2 halves l in the 1/l term only
+  model.reference_length = 2;
+  CHECK(close(c.stiffness(model)[c.edge(0, 1)], std::sqrt(2.0) * (2 + 1)));
+}
+
+TEST_CASE("3D stiffness: the torsional model refuses 3D instead of degrading to lineal springs", "[stiffness][3d]")
+{
+  Corner c;
+  CHECK_THROWS_WITH(c.stiffness(Torsional_stiffness{}), Catch::Contains("2D only"));
+}

@@ -19,7 +19,18 @@ enum Exit_status : int
   exit_usage_error = 2,    ///< bad command line: nothing read or written
   exit_invalid = 3,        ///< `deform`: a step inverted an element, outputs hold the last valid state;
                            ///< `check`: the mesh has degenerate or inverted elements
-  exit_internal_error = 4  ///< a bug or out of memory: please report it
+  exit_internal_error = 4, ///< a bug or out of memory: please report it
+  exit_interrupted = 130   ///< SIGINT / SIGTERM: the run stopped, its outputs removed
+};
+
+/// Set by the SIGINT / SIGTERM handler of main(); `deform` checks it after
+/// every step and stops, removing what it wrote.
+bool interrupted();
+void install_interrupt_handlers();
+
+/// Thrown when interrupted() is seen.
+struct Interrupted
+{
 };
 
 int deform_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err,

@@ -187,6 +187,8 @@ struct Command_visitor
     Run_context<D>& c = *context;
     if(c.bar)
       c.bar->update(step, std::chrono::duration<double>(Clock::now() - c.start).count());
+    if(interrupted())
+      throw Interrupted{};
     const bool accepted = step.inverted == 0;
     const bool last = step.step == c.settings->options.number_of_steps;
     if(accepted && (step.step % c.settings->every == 0 || last))
@@ -373,6 +375,7 @@ int deform_command(const std::vector<std::string>& arguments, std::ostream& out,
     inputs.push_back(s.displacement_path);
   check_outputs(inputs, s.outputs, s.report_path);
   const Mesh_file file = read_mesh(s.mesh_path);
+  install_interrupt_handlers(); // from here on outputs may exist: Ctrl-C removes them
   if(file.dimension == 2)
     return run_deform<2>(s, file, out, err, err_is_terminal);
   return run_deform<3>(s, file, out, err, err_is_terminal);

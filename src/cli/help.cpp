@@ -102,7 +102,8 @@ When the motion stops at an inverted step, the outputs hold the last valid
 state and the exit status is 3.
 
 exit status: 0 completed, 1 bad input (nothing written), 2 bad command line,
-3 stopped at an inverted step, 4 internal error.
+3 stopped at an inverted step, 4 internal error, 130 interrupted (Ctrl-C:
+the outputs written so far are removed).
 
 example:
   spring-motion deform wing.msh --moving airfoil --pitch 30 --center 0.25,0 \

@@ -8,6 +8,7 @@
 #include <spring_motion/Error.h>
 #include <spring_motion/Input_error.h>
 
+#include <csignal>
 #include <iostream>
 #include <new>
 #include <string>
@@ -18,6 +19,21 @@
 #ifndef SPRING_MOTION_VERSION
 #define SPRING_MOTION_VERSION "unknown"
 #endif
+
+namespace spring_motion {
+namespace cli {
+namespace {
+volatile std::sig_atomic_t interrupt_flag = 0;
+extern "C" void on_interrupt(int) { interrupt_flag = 1; }
+} // namespace
+bool interrupted() { return interrupt_flag != 0; }
+void install_interrupt_handlers()
+{
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
+}
+} // namespace cli
+} // namespace spring_motion
 
 int main(int argc, char** argv)
 {
@@ -44,6 +60,9 @@ int main(int argc, char** argv)
     std::cerr << "spring-motion: unknown command '" << command
               << "': expected deform, check or convert (see 'spring-motion --help')\n";
     return exit_usage_error;
+  } catch(const Interrupted&) {
+    std::cerr << "spring-motion: interrupted: the run stopped and its outputs were removed\n";
+    return exit_interrupted;
   } catch(const Usage_error& e) {
     std::cerr << "spring-motion " << command << ": " << e.what() << " (see 'spring-motion " << command
               << " --help')\n";

@@ -216,7 +216,7 @@ public:
     SPRING_MOTION_CHECK(std::isfinite(r_max), "the solver's initial residual is not finite");
     Stopping_test stop(options, true);
     if(r_max > 0 && nf > 0) {
-      precondition(threads);
+      precondition(options.preconditioner_relaxation_factor, threads);
       copy(z_, p_, threads);
       double rz = dot(r_, z_, threads);
       while(report.iterations < options.max_iterations) {
@@ -239,7 +239,7 @@ public:
           report.converged = true;
           break;
         }
-        precondition(threads);
+        precondition(options.preconditioner_relaxation_factor, threads);
         const double rz_new = dot(r_, z_, threads);
         const double beta = rz_new / rz;
         rz = rz_new;
@@ -325,24 +325,25 @@ private:
               s[c] += w * xj[c];
           }
           for(int c = 0; c < D; ++c)
-            x[K][c] = s[c] * inv_diag_[K];
+            x[K][c] = omega == 1 ? s[c] * inv_diag_[K] : (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
         }
       }
     }
     return m;
   }
 
-  // z = M^{-1} r, M the symmetric Gauss-Seidel splitting of A in the
-  // multicolour order: a forward then a backward sweep on A z = r from z = 0.
-  void precondition(int threads)
+  // z = M^{-1} r, M the symmetric Gauss-Seidel (SSOR for omega != 1)
+  // splitting of A in the multicolour order: a forward then a backward sweep
+  // on A z = r from z = 0. M is symmetric positive definite for omega in (0, 2).
+  void precondition(double omega, int threads)
   {
     const int nt = team(threads);
     const long nf = long(order_.size());
 #pragma omp parallel for schedule(static) num_threads(nt)
     for(long k = 0; k < nf; ++k)
       z_[std::size_t(k)] = Row{};
-    sweep(z_, r_, 1.0, threads, true, false);
-    sweep(z_, r_, 1.0, threads, false, false);
+    sweep(z_, r_, omega, threads, true, false);
+    sweep(z_, r_, omega, threads, false, false);
   }
 
   void copy(const std::vector<Row>& a, std::vector<Row>& b, int threads)

@@ -194,6 +194,9 @@ inline void check_options(const Solver_options& o)
 {
   SPRING_MOTION_CHECK(o.relaxation_factor > 0 && o.relaxation_factor < 2,
                       "SOR relaxation factor must lie in (0, 2), got " << o.relaxation_factor);
+  SPRING_MOTION_CHECK(o.preconditioner_relaxation_factor > 0 && o.preconditioner_relaxation_factor < 2,
+                      "preconditioner relaxation factor must lie in (0, 2), got "
+                          << o.preconditioner_relaxation_factor);
   SPRING_MOTION_CHECK(o.tolerance > 0 && std::isfinite(o.tolerance),
                       "solver tolerance must be positive and finite, got " << o.tolerance);
 }

@@ -198,6 +198,9 @@ TEST_CASE("write_medit: to a path, and label names as comments", "[write_mesh][m
   const Mesh_file again = spring_motion::read_mesh(path);
   REQUIRE(again.dimension == 2);
   check_same_mesh(file.mesh_2, again.mesh_2);
+  // the comments give the names back
+  CHECK(again.mesh_2.label_names == file.mesh_2.label_names);
+  CHECK(again.mesh_2.label_names == std::map<int, std::string>{{1, "outer"}, {2, "hole"}, {10, "fluid"}});
   CHECK(directory.number_of_entries() == 1); // no temporary left
 }
 

@@ -29,6 +29,7 @@ std::string format_double(double value)
 template <int D>
 void copy_names(Indexed_mesh<D>& mesh, Raw_mesh& raw)
 {
+  mesh.label_names = raw.comment_names;
   // Boundary facets' names last, so that they win when a number is used in
   // both dimensions: boundary conditions are chosen by boundary label.
   for(const auto& [tag, name] : raw.names[D])

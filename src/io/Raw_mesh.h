@@ -48,6 +48,7 @@ struct Raw_mesh
 
   std::array<Unsupported_elements, 4> unsupported; // by element dimension
   std::array<std::map<int, std::string>, 4> names; // Gmsh physical names by dimension
+  std::map<int, std::string> comment_names;        // Medit "# label N: NAME" comments
   std::vector<std::string> skipped_sections;       // Medit sections of unknown layout
 
   void add_point(double x, double y, double z, std::size_t line)

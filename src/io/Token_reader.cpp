@@ -62,8 +62,11 @@ bool Token_reader::next(std::string_view& token)
   for(;;) {
     while(position_ < current_line_.size() && is_blank(current_line_[position_]))
       ++position_;
-    if(position_ < current_line_.size() && comment_ != '\0' && current_line_[position_] == comment_)
+    if(position_ < current_line_.size() && comment_ != '\0' && current_line_[position_] == comment_) {
+      if(comment_handler_)
+        comment_handler_(std::string_view(current_line_).substr(position_ + 1), line_number_);
       position_ = current_line_.size();
+    }
     if(position_ < current_line_.size())
       break;
     if(!read_line())

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <istream>
 #include <string>
 #include <string_view>
@@ -35,6 +36,12 @@ public:
 
   /// Characters from `c` to the end of the line are ignored (Medit's '#').
   void set_comment_character(char c) { comment_ = c; }
+  /// Called with the text after the comment character (and the line) for
+  /// every comment skipped; a comment may be seen twice after put_back().
+  void set_comment_handler(std::function<void(std::string_view, std::size_t)> handler)
+  {
+    comment_handler_ = std::move(handler);
+  }
 
   /// The next token, or false at the end of the input. The view stays valid
   /// until the next call that moves the reader.
@@ -88,6 +95,7 @@ private:
   std::size_t bytes_available_ = 0; // 0 when the stream cannot tell its size
   bool size_known_ = false;
   char comment_ = '\0';
+  std::function<void(std::string_view, std::size_t)> comment_handler_;
   Section_progress* progress_ = nullptr;
 };
 

@@ -61,7 +61,8 @@ Mesh_file read_mesh(const std::string& path);
 /// references become `element_labels`; the references of `Edges` (2D) or
 /// `Triangles` (3D, when there are tetrahedra) become `boundary_labels`.
 /// A `Dimension 3` file with triangles only and all z == 0 is read as 2D.
-/// Comments start with `#`. Other sections of known layout (`Corners`,
+/// Comments start with `#`; a comment `# label N: NAME` (as `write_medit()`
+/// writes the label names) names label N. Other sections of known layout (`Corners`,
 /// `Ridges`, `Required*`, `Normals`, `Tangents`, ...) are skipped by their
 /// count; sections of unknown layout are skipped up to the next keyword.
 /// `Vertices` must come before the element sections (every known writer

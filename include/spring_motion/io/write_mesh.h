@@ -37,9 +37,10 @@ struct Data_array
 
 /// Medit ASCII: `Vertices`, then `Triangles` + `Edges` (2D) or `Tetrahedra` +
 /// `Triangles` (3D) with the labels as references, and `label_names` as
-/// comments. Coordinates are written in the shortest form that reads back to
-/// the same double, so `read_medit()` returns the same mesh bit for bit
-/// (label names aside, which Medit cannot hold).
+/// comments (`# label N: NAME`, which `read_medit()` reads back; other Medit
+/// readers ignore them). Coordinates are written in the shortest form that
+/// reads back to the same double, so `read_medit()` returns the same mesh bit
+/// for bit.
 template <int D>
 void write_medit(const Indexed_mesh<D>& mesh, std::ostream& out);
 template <int D>

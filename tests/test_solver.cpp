@@ -223,3 +223,72 @@ TEST_CASE("solvers: the paper's max-change criterion stops far from the solution
   CHECK_THAT(json.str(), Catch::Contains("\"residual\": ") && Catch::Contains("\"error_estimate\": ") &&
                              Catch::Contains("\"max_update\": "));
 }
+
+TEST_CASE("solvers: an iteration cap stops a solve unconverged, and every report says so", "[solver][errors]")
+{
+  CDT cdt;
+  make_square_with_hole(cdt);
+  const auto net = extract_spring_network(cdt).network;
+  Solver_options capped = Solver_options::paper();
+  capped.max_iterations = 3; // far fewer sweeps than the ~60 this solve needs
+  Network_deformer<2> deformer(net, assign_roles(net, moving_boundary_where(on_hole)));
+  Deform_options options;
+  options.number_of_steps = 2;
+  options.solver = capped;
+  const auto report = deformer.run(Pitch_motion<2>(2, {0, 0}), Lineal_stiffness{}, options);
+  CHECK_FALSE(report.converged);
+  REQUIRE_FALSE(report.steps.empty());
+  for(const auto& s : report.steps) {
+    CHECK_FALSE(s.converged);
+    CHECK(s.iterations == 3);
+    CHECK(s.max_update > capped.tolerance); // the criterion was not met
+  }
+  std::ostringstream json;
+  write_report_json(report, json);
+  CHECK_THAT(json.str(), Catch::Contains("\"converged\": false"));
+}
+
+TEST_CASE("solvers: a warm start from the previous increment gives the same motion in fewer iterations",
+          "[solver][warm_start]")
+{
+  CDT cdt;
+  make_square_with_hole(cdt);
+  const auto net = extract_spring_network(cdt).network;
+  Deform_options options;
+  options.number_of_steps = 10;
+  options.solver.method = Solver_method::sor;
+  options.solver.tolerance = 1e-9;
+  auto run = [&](bool warm, bool extrapolate, std::size_t& iterations) {
+    options.solver.warm_start = warm;
+    options.solver.extrapolate = extrapolate;
+    Network_deformer<2> deformer(net, assign_roles(net, moving_boundary_where(on_hole)));
+    const auto report = deformer.run(Pitch_motion<2>(20, {0, 0}), Grid_scaled_stiffness{}, options);
+    REQUIRE(report.completed);
+    REQUIRE(report.converged);
+    iterations = 0;
+    for(const auto& s : report.steps)
+      iterations += s.iterations;
+    return deformer.positions();
+  };
+  std::size_t cold_iterations = 0, warm_iterations = 0, extrapolated_iterations = 0;
+  const auto cold = run(false, false, cold_iterations);
+  const auto warm = run(true, false, warm_iterations);
+  const auto extrapolated = run(true, true, extrapolated_iterations);
+  INFO("sweeps: cold " << cold_iterations << ", previous increment " << warm_iterations << ", extrapolated "
+                       << extrapolated_iterations);
+  CHECK(warm_iterations < cold_iterations);
+  CHECK(extrapolated_iterations < cold_iterations);
+  // the starting point changes the iterates, not the equations: each step's
+  // solve ends within about tol of the same solution, and as in
+  // test_stiffness.cpp differences carried into the next step's stiffness add
+  // up over the n steps; a factor 10 because the error is an estimate
+  double d1 = 0, d2 = 0;
+  for(std::size_t i = 0; i < cold.size(); ++i)
+    for(int c = 0; c < 2; ++c) {
+      d1 = std::max(d1, std::abs(cold[i][c] - warm[i][c]));
+      d2 = std::max(d2, std::abs(cold[i][c] - extrapolated[i][c]));
+    }
+  const double bound = 10 * 2 * double(options.number_of_steps) * options.solver.tolerance;
+  CHECK(d1 <= bound);
+  CHECK(d2 <= bound);
+}

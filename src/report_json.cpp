@@ -93,6 +93,7 @@ void write_report_json(const Deform_report& r, std::ostream& out)
         << ", \"converged\": " << (s.converged ? "true" : "false") << ", \"max_update\": " << number(s.max_update)
         << ", \"residual\": " << number(s.residual) << ", \"error_estimate\": " << number(s.error_estimate) << ", \"substeps\": " << s.substeps
         << ", \"inverted\": " << s.inverted << ", \"min_size_ratio\": " << number(s.min_size_ratio)
+        << ", \"max_size_ratio\": " << number(s.max_size_ratio)
         << ", \"max_skewness_moving\": " << number(s.max_skewness_moving)
         << ", \"max_skewness_all\": " << number(s.max_skewness_all) << ", \"seconds\": { \"stiffness\": "
         << number(s.seconds_stiffness) << ", \"solve\": " << number(s.seconds_solve)
@@ -112,6 +113,7 @@ void write_report_json(const Deform_report& r, std::ostream& out)
   out << ",\n  \"final_fraction\": " << number(r.final_fraction) << ",\n";
   out << "  \"final_angle_deg\": " << number(r.final_angle_deg) << ",\n";
   out << "  \"min_size_ratio\": " << number(r.min_size_ratio) << ",\n";
+  out << "  \"max_size_ratio\": " << number(r.max_size_ratio) << ",\n";
   out << "  \"quality\": { \"moving_boundary\": " << histogram(r.quality_moving)
       << ",\n               \"all\": " << histogram(r.quality_all) << " },\n";
   out << "  \"seconds_total\": " << number(r.seconds_total) << " }\n";

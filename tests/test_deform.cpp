@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
 
 using namespace spring_motion;
 using namespace spring_motion_test;
@@ -236,4 +237,32 @@ TEST_CASE("deform: a rigid translation of the whole boundary translates every ve
       worst = std::max({worst, std::abs(p[0] - (p0.first + d[0])), std::abs(p[1] - (p0.second + d[1]))});
     CHECK(worst < 1e-12); // round-off on coordinates of size 2
   }
+}
+
+TEST_CASE("deform: the reports give the smallest and largest area ratio", "[deform][quality]")
+{
+  // the unit square split into four triangles around the centre vertex 4;
+  // moving the centre by (0.2, 0) changes the heights over the right and
+  // left sides from 1/2 to 0.3 and 0.7: area ratios 0.6 and 1.4, the other
+  // two triangles keep theirs
+  Indexed_mesh<2> mesh;
+  mesh.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}};
+  mesh.elements = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  auto centre_moves = [](const Vertex_info<2>& v) {
+    return v.index == 4 ? Vertex_role::moving : Vertex_role::fixed;
+  };
+  Deform_options options;
+  options.number_of_steps = 2;
+  const auto report = deform(mesh, centre_moves, Translation_motion<2>{{0.2, 0}}, Lineal_stiffness{}, options);
+  REQUIRE(report.completed);
+  // a few roundings in the areas
+  CHECK(report.min_size_ratio == Approx(0.6).epsilon(1e-14));
+  CHECK(report.max_size_ratio == Approx(1.4).epsilon(1e-14));
+  // halfway: heights 0.4 and 0.6
+  REQUIRE(report.steps.size() == 2);
+  CHECK(report.steps[0].min_size_ratio == Approx(0.8).epsilon(1e-14));
+  CHECK(report.steps[0].max_size_ratio == Approx(1.2).epsilon(1e-14));
+  std::ostringstream json;
+  write_report_json(report, json);
+  CHECK_THAT(json.str(), Catch::Contains("\"max_size_ratio\": 1.4"));
 }

@@ -30,6 +30,7 @@ struct Step_report
   std::size_t substeps = 1;   ///< equal substeps the step took (1: none; a power of two)
   std::size_t inverted = 0;   ///< elements inverted by the rejected attempt (0 if accepted)
   double min_size_ratio = std::numeric_limits<double>::quiet_NaN();
+  double max_size_ratio = std::numeric_limits<double>::quiet_NaN();
   double max_skewness_moving = std::numeric_limits<double>::quiet_NaN();
   double max_skewness_all = std::numeric_limits<double>::quiet_NaN();
   double seconds_stiffness = 0, seconds_solve = 0, seconds_check = 0;
@@ -67,6 +68,7 @@ struct Deform_report
   /// boundary and over all elements
   Skewness_histogram quality_moving, quality_all;
   double min_size_ratio = 1;      ///< min over elements of measure / initial measure, final state
+  double max_size_ratio = 1;      ///< max over elements of measure / initial measure, final state
   double seconds_total = 0;
 };
 

@@ -185,6 +185,7 @@ public:
           if(touches_moving_[t])
             s.max_skewness_moving = std::max(s.max_skewness_moving, r[t]);
         s.min_size_ratio = min_size_ratio(options.solver.threads);
+        s.max_size_ratio = max_size_ratio(options.solver.threads);
         s.seconds_check += seconds_since(q0);
       }
       rep.steps.push_back(s);
@@ -196,6 +197,7 @@ public:
     rep.quality_all = skewness_histogram(r, [](std::size_t) { return true; });
     rep.quality_moving = skewness_histogram(r, [&](std::size_t t) { return touches_moving_[t] != 0; });
     rep.min_size_ratio = min_size_ratio(options.solver.threads);
+    rep.max_size_ratio = max_size_ratio(options.solver.threads);
     rep.seconds_total = seconds_since(start);
     return rep;
   }
@@ -209,6 +211,17 @@ public:
     for(long t = 0; t < m; ++t)
       mn = std::min(mn, scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)]);
     return mn;
+  }
+
+  /// max over elements of (current measure / initial measure)
+  double max_size_ratio(int threads = 0) const
+  {
+    const long m = long(net_.number_of_elements());
+    double mx = -std::numeric_limits<double>::infinity();
+#pragma omp parallel for reduction(max : mx) schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
+    for(long t = 0; t < m; ++t)
+      mx = std::max(mx, scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)]);
+    return mx;
   }
 
 private:

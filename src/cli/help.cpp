@@ -24,7 +24,8 @@ commands:
 
 Meshes: Medit ASCII (.mesh, Dimension 2 or 3) and Gmsh ASCII 2.2 / 4.1 (.msh).
 Exit status: 0 success, 1 bad input (nothing written), 2 bad command line,
-3 motion stopped at an inverted step / invalid mesh, 4 internal error.
+3 motion stopped at an inverted step / invalid mesh, 4 internal error,
+130 interrupted (outputs removed).
 See docs/cli.md.
 )";
 }

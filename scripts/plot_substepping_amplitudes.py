@@ -2,7 +2,10 @@
 """Table and bar chart of the largest NACA0012 pitch amplitude per model,
 without and with adaptive substepping (scripts/substepping_amplitudes.sh).
 
-usage: plot_substepping_amplitudes.py K0.json KK.json K TABLE.txt FIGURE.png
+usage: plot_substepping_amplitudes.py K TABLE.txt FIGURE.png N1_K0.json N1_KK.json [N2_K0.json N2_KK.json ...]
+
+The JSON files are naca0012_pitch_2d --max-amplitude reports, in pairs
+(without, with substepping) per step count.
 """
 import json
 import sys
@@ -14,38 +17,50 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def main():
-    without_path, with_path, k, table_path, figure_path = sys.argv[1:6]
-    k = int(k)
-    without = json.load(open(without_path))
-    with_ = json.load(open(with_path))
-    models = list(without["models"])
+    k = int(sys.argv[1])
+    table_path, figure_path = sys.argv[2], sys.argv[3]
+    reports = [json.load(open(p)) for p in sys.argv[4:]]
+    pairs = [(reports[i], reports[i + 1]) for i in range(0, len(reports), 2)]
+    models = list(pairs[0][0]["models"])
+    res = pairs[0][0]["resolution_deg"]
     lines = [
-        "largest pitch amplitude (deg) whose %d-step run completes, NACA0012 coarse mesh," % without["steps"],
-        "bisection to %.1f deg up to 180 deg; substeps: at most 2^%d = %d per step" % (without["resolution_deg"], k, 2 ** k),
+        "largest pitch amplitude (deg) whose run completes, NACA0012 coarse mesh, bisection to %.1f deg up to 180;" % res,
+        "'plain': the paper's method (stop at the first invalid step); 'substeps': an inverting step is retried",
+        "as 2, 4, ... up to 2^%d = %d substeps. +: nose up, -: nose down." % (k, 2 ** k),
         "",
-        "%-12s %12s %12s %12s %12s" % ("model", "+ no substep", "+ substeps", "- no substep", "- substeps"),
     ]
+    header = "%-12s" % "model"
+    for plain, _ in pairs:
+        n = plain["steps"]
+        header += " %9s %9s %9s %9s" % ("+ n=%d" % n, "+ sub", "- n=%d" % n, "- sub")
+    lines.append(header)
     for m in models:
-        a, b = without["models"][m], with_["models"][m]
-        lines.append("%-12s %12.1f %12.1f %12.1f %12.1f" % (m, a["positive_deg"], b["positive_deg"],
-                                                           a["negative_deg"], b["negative_deg"]))
+        row = "%-12s" % m
+        for plain, sub in pairs:
+            row += " %9.1f %9.1f %9.1f %9.1f" % (plain["models"][m]["positive_deg"], sub["models"][m]["positive_deg"],
+                                                 plain["models"][m]["negative_deg"], sub["models"][m]["negative_deg"])
+        lines.append(row)
     open(table_path, "w").write("\n".join(lines) + "\n")
 
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4), sharey=True)
-    x = range(len(models))
-    w = 0.38
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), sharey=True)
+    groups = len(pairs) * 2
+    w = 0.8 / groups
+    colors = ["#9ecae1", "#3182bd", "#fdae6b", "#e6550d", "#a1d99b", "#31a354"]
     for ax, key, title in ((axes[0], "positive_deg", "nose up (+)"), (axes[1], "negative_deg", "nose down (-)")):
-        ax.bar([i - w / 2 for i in x], [without["models"][m][key] for m in models], w, label="no substepping")
-        ax.bar([i + w / 2 for i in x], [with_["models"][m][key] for m in models], w,
-               label="up to %d substeps" % 2 ** k)
-        ax.set_xticks(list(x))
+        for g, (plain, sub) in enumerate(pairs):
+            for j, (rep, label) in enumerate(((plain, "%d steps" % plain["steps"]),
+                                              (sub, "%d steps, up to %d substeps" % (sub["steps"], 2 ** k)))):
+                idx = 2 * g + j
+                xs = [i - 0.4 + w * (idx + 0.5) for i in range(len(models))]
+                ax.bar(xs, [rep["models"][m][key] for m in models], w, label=label, color=colors[idx % len(colors)])
+        ax.set_xticks(list(range(len(models))))
         ax.set_xticklabels(models, rotation=30, ha="right")
         ax.set_title(title)
-        ax.set_ylim(0, 185)
+        ax.set_ylim(0, 190)
         ax.grid(axis="y", alpha=0.3)
     axes[0].set_ylabel("largest completed amplitude (deg)")
-    axes[0].legend(loc="upper left")
-    fig.suptitle("NACA0012 pitch, %d steps: largest amplitude with and without adaptive substepping" % without["steps"])
+    axes[1].legend(loc="upper left", fontsize=8)
+    fig.suptitle("NACA0012 pitch: largest amplitude with and without adaptive substepping (180 = search limit)")
     fig.tight_layout()
     fig.savefig(figure_path, dpi=110)
 

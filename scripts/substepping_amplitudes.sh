@@ -1,33 +1,41 @@
 #!/usr/bin/env bash
 # Largest pitch amplitude of every model on the 2D NACA0012 case (coarse
-# mesh, 100 steps, bisection to 0.5 deg up to 180), without adaptive
-# substepping (the paper's method) and with up to 2^K substeps per step.
+# mesh, bisection to 0.5 deg up to 180), without adaptive substepping (the
+# paper's method) and with up to 2^K substeps per step, for each step count.
 #
-#   scripts/substepping_amplitudes.sh [BUILD_DIR] [K]
+#   scripts/substepping_amplitudes.sh [BUILD_DIR] [K] [STEPS...]
 #
 # BUILD_DIR (default build-rel) must hold examples/naca0012_pitch_2d;
-# K defaults to 6 (64 substeps). Writes docs/reliability/:
-#   substepping_k0.txt, substepping_kK.txt   the program's full output
-#   substepping_k0.json, substepping_kK.json its max_amplitude reports
-#   substepping_amplitudes.txt               the comparison table
-#   substepping_amplitudes.png               the figure
-# Runs many solves (minutes): run it with nice on a shared machine.
+# K defaults to 6 (64 substeps), STEPS to "100 10". Writes docs/reliability/:
+#   substepping_n<STEPS>_k<0|K>.txt    the program's full output
+#   substepping_n<STEPS>_k<0|K>.json   its max_amplitude report
+#   substepping_amplitudes.txt         the comparison table
+#   substepping_amplitudes.png         the figure
+# Runs many solves (tens of minutes on a busy machine): use nice.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$here/build-rel}"
 k="${2:-6}"
+shift $(( $# < 2 ? $# : 2 ))
+steps=("$@")
+[ ${#steps[@]} -gt 0 ] || steps=(100 10)
 exe="$build/examples/naca0012_pitch_2d"
 out="$here/docs/reliability"
 [ -x "$exe" ] || { echo "substepping_amplitudes.sh: no $exe (build the naca0012_pitch_2d target)" >&2; exit 2; }
 mkdir -p "$out"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
-for h in 0 "$k"; do
-  mkdir -p "$tmp/k$h"
-  "$exe" --max-amplitude --max-substep-halvings "$h" --report-dir "$tmp/k$h" > "$tmp/k$h.txt"
-  cp "$tmp/k$h.txt" "$out/substepping_k$h.txt"
-  cp "$tmp/k$h/max_amplitude.json" "$out/substepping_k$h.json"
+jsons=()
+for n in "${steps[@]}"; do
+  for h in 0 "$k"; do
+    name="substepping_n${n}_k${h}"
+    mkdir -p "$tmp/$name"
+    "$exe" --steps "$n" --max-amplitude --max-substep-halvings "$h" --report-dir "$tmp/$name" > "$tmp/$name.txt"
+    cp "$tmp/$name.txt" "$out/$name.txt"
+    cp "$tmp/$name/max_amplitude.json" "$out/$name.json"
+    jsons+=("$out/$name.json")
+  done
 done
-/usr/bin/python3 "$here/scripts/plot_substepping_amplitudes.py" "$out/substepping_k0.json" "$out/substepping_k$k.json" \
-  "$k" "$out/substepping_amplitudes.txt" "$out/substepping_amplitudes.png"
+/usr/bin/python3 "$here/scripts/plot_substepping_amplitudes.py" "$k" "$out/substepping_amplitudes.txt" \
+  "$out/substepping_amplitudes.png" "${jsons[@]}"
 cat "$out/substepping_amplitudes.txt"

@@ -477,6 +477,9 @@ Sweep_stats time_sweep(const Case<D>& c, const Captured_system<D>& cap, int thre
   Sweep_stats s;
   sm::internal::Free_system<D> fs;
   fs.build(c.net, cap.free);
+  progress(c.name + ": ordering " + std::to_string(fs.blocks()) + " blocks of ~" +
+           std::to_string(fs.rows() / std::max<std::size_t>(1, fs.blocks())) + " rows in " +
+           std::to_string(fs.colours()) + " colours");
   fs.load(cap.sys, cap.x0, threads);
   std::vector<double> ts;
   const int reps = c.net.number_of_vertices() > 200000 ? 7 : 31;

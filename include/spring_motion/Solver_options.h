@@ -23,10 +23,16 @@ enum class Vertex_ordering
 {
   /// colour by colour (no two neighbours share a colour), reverse
   /// Cuthill-McKee within a colour: runs in parallel within each colour and
-  /// gives bitwise the same result for any thread count. The default.
+  /// gives bitwise the same result for any thread count.
   multicolour,
   /// the network's vertex order, one thread (the original implementation)
-  natural
+  natural,
+  /// blocks of consecutive reverse Cuthill-McKee rows as wide as the ordering's
+  /// bandwidth, the blocks coloured (two colours, typically): Gauss-Seidel in
+  /// RCM order inside a block, the blocks of a colour in parallel. Locality
+  /// and convergence of the natural order, and bitwise the same result for
+  /// any thread count. The default.
+  block_multicolour
 };
 
 /// When a solve stops.
@@ -65,7 +71,7 @@ struct Solver_options
   /// fixed point is the same; the start is closer by an order of the step.
   bool extrapolate = true;
   /// Gauss-Seidel order (element models always use `natural`).
-  Vertex_ordering ordering = Vertex_ordering::multicolour;
+  Vertex_ordering ordering = Vertex_ordering::block_multicolour;
   /// OpenMP threads for stiffness, solve, checks and quality; 0: OpenMP's
   /// default. The result does not depend on it.
   int threads = 0;

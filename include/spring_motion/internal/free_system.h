@@ -25,6 +25,9 @@ namespace internal {
 /// Rows per chunk of every reduction: partial results are formed per fixed
 /// chunk and added in chunk order, so sums do not depend on the thread count.
 constexpr std::size_t reduction_chunk = 1024;
+/// The smallest block of the block-multicolour ordering (blocks are as wide as
+/// the reverse Cuthill-McKee bandwidth, at least this).
+constexpr std::size_t min_block_rows = 256;
 
 /// The scalar (edge-model) spring system restricted to the free vertices, in
 /// flat arrays ordered for speed: free vertices are numbered colour by colour
@@ -44,12 +47,14 @@ public:
   bool empty() const { return order_.empty() && !built_; }
   bool built() const { return built_; }
   std::size_t rows() const { return order_.size(); }
+  std::size_t blocks() const { return block_offsets_.empty() ? 0 : block_offsets_.size() - 1; }
   std::size_t colours() const { return colour_offsets_.empty() ? 0 : colour_offsets_.size() - 1; }
   std::size_t nonzeros() const { return col_.size(); }
   const std::vector<Index>& order() const { return order_; }
 
   /// Builds the ordering and the pattern for these free vertices.
-  void build(const Spring_network<D>& net, const std::vector<Index>& free_vertices)
+  void build(const Spring_network<D>& net, const std::vector<Index>& free_vertices,
+             std::size_t block_rows = 0)
   {
     const std::size_t n = net.number_of_vertices();
     const std::size_t nf = free_vertices.size();
@@ -73,27 +78,64 @@ public:
     std::vector<std::size_t> position(nf);
     for(std::size_t r = 0; r < nf; ++r)
       position[rcm[r]] = r;
-    // greedy colouring visiting the vertices in RCM order
-    std::vector<std::size_t> colour(nf, 0);
+    // Blocks of `block_rows` consecutive RCM rows; the quotient of the spring
+    // graph on the blocks is coloured greedily (blocks in RCM order). With 1
+    // row per block this is the plain multicolour ordering of the vertices.
+    std::size_t bandwidth = 0;
+    for(std::size_t k = 0; k < nf; ++k) {
+      const Index i = free_vertices[k];
+      for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p)
+        if(compact[net.adjacency[p]] != none) {
+          const std::size_t a = position[k], b = position[compact[net.adjacency[p]]];
+          bandwidth = std::max(bandwidth, a > b ? a - b : b - a);
+        }
+    }
+    // 0: blocks as wide as the RCM bandwidth, so a block touches only the
+    // blocks before and after it: two colours
+    const std::size_t B = block_rows > 0 ? block_rows : std::max(min_block_rows, bandwidth);
+    const std::size_t nb = (nf + B - 1) / B;
+    std::vector<std::size_t> colour(nb, 0);
     std::size_t ncolours = 0;
-    if(nf > 0)
+    if(nf > 0) {
+      std::vector<std::pair<std::size_t, std::size_t>> links;
+      for(std::size_t k = 0; k < nf; ++k) {
+        const Index i = free_vertices[k];
+        for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p) {
+          const Index j = net.adjacency[p];
+          if(compact[j] == none)
+            continue;
+          const std::size_t a = position[k] / B, b = position[compact[j]] / B;
+          if(a < b)
+            links.emplace_back(a, b);
+        }
+      }
+      std::sort(links.begin(), links.end());
+      links.erase(std::unique(links.begin(), links.end()), links.end());
+      Graph quotient(nb);
+      for(const auto& l : links)
+        boost::add_edge(l.first, l.second, quotient);
       ncolours = boost::sequential_vertex_coloring(
-          g, boost::make_iterator_property_map(rcm.begin(), boost::identity_property_map()),
-          boost::make_iterator_property_map(colour.begin(), boost::get(boost::vertex_index, g)));
-    std::vector<std::size_t> by(nf);
-    std::iota(by.begin(), by.end(), std::size_t(0));
-    std::sort(by.begin(), by.end(), [&](std::size_t a, std::size_t b) {
-      return colour[a] != colour[b] ? colour[a] < colour[b] : position[a] < position[b];
-    });
+          quotient, boost::make_iterator_property_map(colour.begin(), boost::get(boost::vertex_index, quotient)));
+    }
+    // blocks colour by colour, in RCM order within a colour; rows in RCM order
+    std::vector<std::size_t> blocks(nb);
+    std::iota(blocks.begin(), blocks.end(), std::size_t(0));
+    std::stable_sort(blocks.begin(), blocks.end(),
+                     [&](std::size_t a, std::size_t b) { return colour[a] < colour[b]; });
     order_.resize(nf);
     std::vector<Index> row_of(n, none);
-    for(std::size_t r = 0; r < nf; ++r) {
-      order_[r] = free_vertices[by[r]];
-      row_of[order_[r]] = Index(r);
-    }
+    block_offsets_.assign(nb + 1, 0);
     colour_offsets_.assign(ncolours + 1, 0);
-    for(std::size_t k = 0; k < nf; ++k)
-      ++colour_offsets_[colour[k] + 1];
+    std::size_t r = 0;
+    for(std::size_t q = 0; q < nb; ++q) {
+      const std::size_t b = blocks[q];
+      for(std::size_t pos = b * B; pos < std::min(nf, (b + 1) * B); ++pos, ++r) {
+        order_[r] = free_vertices[rcm[pos]];
+        row_of[order_[r]] = Index(r);
+      }
+      block_offsets_[q + 1] = Index(r);
+      ++colour_offsets_[colour[b] + 1];
+    }
     for(std::size_t c = 0; c < ncolours; ++c)
       colour_offsets_[c + 1] += colour_offsets_[c];
     // pattern: free neighbours by row, constrained neighbours apart
@@ -280,8 +322,10 @@ private:
     return y;
   }
 
-  // Gauss-Seidel over the colours in order (backward: in reverse order),
-  // in parallel within a colour. `update`: track the max change.
+  // Gauss-Seidel over the colours in order, rows in order within a block
+  // (backward: all in reverse), the blocks of a colour in parallel: a block
+  // reads only its own rows and rows of other colours, so any schedule gives
+  // the same result. `track`: return the max change.
   double sweep(std::vector<Row>& x, const std::vector<Row>& rhs, double omega, int threads, bool forward,
                bool track = true)
   {
@@ -291,11 +335,12 @@ private:
     for(std::size_t cc = 0; cc < nc; ++cc) {
       const std::size_t colour = forward ? cc : nc - 1 - cc;
       const long first = long(colour_offsets_[colour]), last = long(colour_offsets_[colour + 1]);
-      if(track) {
-        double cm = 0;
+      double cm = 0;
 #pragma omp parallel for schedule(static) num_threads(nt) reduction(max : cm)
-        for(long k = first; k < last; ++k) {
-          const std::size_t K = std::size_t(k);
+      for(long bq = first; bq < last; ++bq) {
+        const long rb = long(block_offsets_[std::size_t(bq)]), re = long(block_offsets_[std::size_t(bq) + 1]);
+        for(long kk = 0; kk < re - rb; ++kk) {
+          const std::size_t K = std::size_t(forward ? rb + kk : re - 1 - kk);
           Row s = rhs[K];
           for(Index q = row_offsets_[K]; q < row_offsets_[K + 1]; ++q) {
             const double w = val_[q];
@@ -303,31 +348,21 @@ private:
             for(int c = 0; c < D; ++c)
               s[c] += w * xj[c];
           }
-          for(int c = 0; c < D; ++c) {
-            const double nv = (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
-            const double d = std::abs(nv - x[K][c]);
-            // NaN sticks: (d > cm) is false for NaN, so test the negation
-            if(!(d <= cm))
-              cm = std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
-            x[K][c] = nv;
-          }
-        }
-        sticky_max(m, cm);
-      } else {
-#pragma omp parallel for schedule(static) num_threads(nt)
-        for(long k = first; k < last; ++k) {
-          const std::size_t K = std::size_t(k);
-          Row s = rhs[K];
-          for(Index q = row_offsets_[K]; q < row_offsets_[K + 1]; ++q) {
-            const double w = val_[q];
-            const Row& xj = x[col_[q]];
+          if(track)
+            for(int c = 0; c < D; ++c) {
+              const double nv = (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
+              const double d = std::abs(nv - x[K][c]);
+              // a NaN must stick: !(d <= cm) holds for NaN, which becomes +inf
+              if(!(d <= cm))
+                cm = std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
+              x[K][c] = nv;
+            }
+          else
             for(int c = 0; c < D; ++c)
-              s[c] += w * xj[c];
-          }
-          for(int c = 0; c < D; ++c)
-            x[K][c] = omega == 1 ? s[c] * inv_diag_[K] : (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
+              x[K][c] = omega == 1 ? s[c] * inv_diag_[K] : (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
         }
       }
+      sticky_max(m, cm);
     }
     return m;
   }
@@ -462,7 +497,7 @@ private:
   }
 
   bool built_ = false;
-  std::vector<Index> order_, colour_offsets_;
+  std::vector<Index> order_, block_offsets_, colour_offsets_; // colour_offsets_: into the blocks
   std::vector<Index> row_offsets_, col_, src_;
   std::vector<Index> bnd_offsets_, bnd_vertex_, bnd_src_;
   std::vector<double> val_, diag_, inv_diag_, partial_;
@@ -478,7 +513,7 @@ Solve_report solve(const Spring_network<D>& net, const Linear_system<D>& sys, co
   if(sys.block || options.ordering == Vertex_ordering::natural)
     return solve(net, sys, free_vertices, x, options);
   if(!fs.built())
-    fs.build(net, free_vertices);
+    fs.build(net, free_vertices, options.ordering == Vertex_ordering::multicolour ? 1 : 0);
   fs.load(sys, x, options.threads);
   const Solve_report r = options.method == Solver_method::sor ? fs.solve_sor(options)
                                                              : fs.solve_conjugate_gradient(options);

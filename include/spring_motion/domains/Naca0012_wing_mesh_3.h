@@ -41,9 +41,9 @@ struct Naca0012_wing_mesh_3_options
   std::size_t span_intervals = 40;     ///< input intervals along the span
   std::size_t sphere_subdivisions = 4; ///< the input sphere is an icosahedron subdivided this many times
   double far_field_radius = 15;
-  double size_at_wing = 0.07;          ///< Mesh_3 edge, facet and cell size at the wing
-  double size_at_trailing_edge = 0.035; ///< edge size along the trailing edge and tip edges near it
-  double size_growth = 0.25;           ///< size grows by this much per chord of distance from the wing
+  double size_at_wing = 0.04;          ///< Mesh_3 facet and cell size at the wing
+  double size_at_trailing_edge = 0.035; ///< Mesh_3 edge size along the trailing edge and the tip edges
+  double size_growth = 0.091;          ///< size grows by this much per chord of distance from the wing
   double facet_distance = 0.004;       ///< Mesh_3 facet distance bound near the wing (curvature)
   double facet_angle = 25;             ///< Mesh_3 facet angle bound (degrees)
   double cell_radius_edge_ratio = 3;   ///< Mesh_3 radius-edge bound

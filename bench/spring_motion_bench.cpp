@@ -136,6 +136,7 @@ struct Run_stats
   double total = 0; // median over repeats, s
   double stiffness = 0, solve = 0, check = 0; // median per step, s
   double iterations = 0; // mean per step
+  std::size_t steps_run = 0; // steps reported by the last repeat (fewer if it stopped)
 };
 
 struct Compare_stats
@@ -365,6 +366,7 @@ Run_stats run_case(const Case<D>& c, int threads, std::vector<Captured_system<D>
     const Partial_motion<sm::Pitch_motion<D>> motion{c.motion, double(c.steps) / double(c.of_steps)};
     const auto rep = deformer.run(motion, sm::Grid_scaled_stiffness{}, options);
     st.completed = rep.completed;
+    st.steps_run = rep.steps.size();
     if(capture && r == 0 && capture->empty() && latest)
       capture->push_back(std::move(*latest));
     if(!rep.completed && rep.first_invalid)
@@ -668,10 +670,10 @@ void print_targets(const std::vector<Row>& rows, bool quick)
     }
     const Row* b = find("box");
     if(a && b) {
-      auto per_step = [&](const Row& r) {
+      auto per_step = [&](const Row& r) { // over the steps actually run
         double t = 1e300;
         for(const auto& s : r.runs)
-          t = std::min(t, s.total / double(r.steps));
+          t = std::min(t, s.total / double(std::max<std::size_t>(1, s.steps_run)));
         return t;
       };
       const double p = std::log(per_step(*b) / per_step(*a)) / std::log(double(b->nodes) / double(a->nodes));

@@ -293,8 +293,8 @@ public:
     }
     report.residual = scaled_residual(threads);
     SPRING_MOTION_CHECK(std::isfinite(report.residual), "the solver produced a non-finite value");
-    if(!report.converged && report.iterations < options.max_iterations)
-      report.converged = report.residual == 0 || nf == 0 || r_max == 0;
+    if(!report.converged && report.iterations < options.max_iterations) // a vanishing recurrence residual
+      report.converged = residual_at_rounding_level(report.residual, max_abs(x_, threads)) || nf == 0 || r_max == 0;
     report.last_max_update = stop.last();
     report.error_estimate = report.converged && report.iterations == 0 ? 0 : stop.estimate();
     return report;

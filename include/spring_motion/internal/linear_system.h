@@ -138,6 +138,15 @@ double scaled_residual(const Spring_network<D>& net, const Linear_system<D>& sys
   return r;
 }
 
+/// Whether a scaled residual (the change one Jacobi update would make) is a
+/// rounding error of a solution of size `x_max`: conjugate gradients break
+/// down (p.Ap <= 0) only once their recurrence residual is exactly zero, and
+/// the recomputed residual of that solution is then at this level.
+inline bool residual_at_rounding_level(double residual, double x_max)
+{
+  return residual <= 64 * std::numeric_limits<double>::epsilon() * x_max;
+}
+
 /// The stopping test of both solvers, from the sequence of max changes.
 class Stopping_test
 {
@@ -331,8 +340,12 @@ Solve_report solve_conjugate_gradient(const Spring_network<D>& net, const Linear
   report.residual = scaled_residual(net, sys, x, free_vertices);
   SPRING_MOTION_CHECK(std::isfinite(report.residual), "the solver produced a non-finite value");
   if(!report.converged && report.iterations < options.max_iterations) {
-    // stopped on an exactly vanishing residual, or with nothing to solve
-    report.converged = report.residual == 0 || free_vertices.empty() || r_max == 0;
+    // stopped on a vanishing recurrence residual, or with nothing to solve
+    double x_max = 0;
+    for(Index i : free_vertices)
+      for(int c = 0; c < D; ++c)
+        sticky_max(x_max, std::abs(x[i][c]));
+    report.converged = residual_at_rounding_level(report.residual, x_max) || free_vertices.empty() || r_max == 0;
   }
   report.last_max_update = stop.last();
   report.error_estimate = report.converged && report.iterations == 0 ? 0 : stop.estimate();

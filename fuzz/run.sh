@@ -16,6 +16,12 @@ shift || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(read_medit read_gmsh deform)
 build="${FUZZ_BUILD_DIR:-$here/../build-fuzz}"
+# The library's own dependencies, then clang 14 with libFuzzer (Debian packages).
+bash "$here/../scripts/install_dependencies.sh" || exit 2
+if ! compgen -G "/usr/lib/llvm-14/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a" >/dev/null || ! command -v clang++-14 >/dev/null; then
+  SUDO=""; [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends clang-14 libclang-rt-14-dev || exit 2
+fi
 if [ ! -f "$build/CMakeCache.txt" ]; then
   CXX="${CXX:-clang++-14}" cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo || exit 2
 fi

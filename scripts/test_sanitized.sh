@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Builds everything with AddressSanitizer and UndefinedBehaviorSanitizer
+# (-DSPRING_MOTION_SANITIZE=ON) and runs the default test suite under them.
+# Assumes the dependencies are installed (scripts/install_dependencies.sh).
+# -O1 keeps the instrumented CGAL code fast enough for CI. The consumer-package
+# test is left out: it only checks that an installed package configures and
+# builds, which the plain run of scripts/test.sh already shows.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DSPRING_MOTION_SANITIZE=ON
+cmake --build build-sanitize -j"$(nproc)"
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+ctest --test-dir build-sanitize -j"$(nproc)" --output-on-failure -E '^consumer_package$'

@@ -17,44 +17,29 @@
 // Models: lineal, lineal_p2, blom, zeng_ethier (face angles),
 // zeng_ethier_dihedral, grid_scaled (alpha 1, beta 3, dihedral angles).
 // The torsional model is 2D only (its 3D form is not implemented).
+// The table, the reports and the amplitude search are shared with the 2D
+// airfoil, in naca0012_demo.h.
+#include "naca0012_demo.h"
+
 #include <spring_motion/spring_motion.h>
 #include <spring_motion/domains/Naca0012_wing_mesh_3.h>
 #include <spring_motion/internal/angles.h>
-#include <spring_motion/io/network_output.h>
-#include <spring_motion/io/write_mesh.h>
 #include <spring_motion/mesh_traits/Indexed_mesh.h>
 #include <spring_motion/stiffness/model_by_name.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <iostream>
 #include <sstream>
 #include <string>
-#include <vector>
 
 #ifndef SPRING_MOTION_MESH_CACHE_DIR
 #define SPRING_MOTION_MESH_CACHE_DIR "."
 #endif
 
 namespace sm = spring_motion;
-
-struct Setup
-{
-  double amplitude = 30;
-  std::size_t steps = 100;
-  std::string report_dir;
-  bool max_amplitude = false;
-  bool paper_solver = false;
-  bool mesh_only = false;
-  std::size_t max_substep_halvings = 0;
-  std::string mesh_cache = SPRING_MOTION_MESH_CACHE_DIR;
-  sm::Naca0012_wing_mesh_3_options mesh;
-  std::vector<std::string> models{"lineal", "lineal_p2", "blom", "zeng_ethier", "zeng_ethier_dihedral",
-                                  "grid_scaled"};
-};
+namespace demo = naca0012_demo;
 
 // The built-in models by name, plus Zeng-Ethier with dihedral angles.
 template <class F>
@@ -66,54 +51,6 @@ decltype(auto) with_model_3d(const std::string& name, F&& f)
     return f(static_cast<const sm::Zeng_Ethier_semi_torsional_stiffness&>(model));
   }
   return sm::with_model(name, std::forward<F>(f));
-}
-
-sm::Deform_report pitch(const sm::Spring_network<3>& net, const std::vector<sm::Vertex_role>& roles,
-                        const std::string& model, double amplitude, const Setup& setup,
-                        sm::Network_deformer<3>* keep = nullptr)
-{
-  sm::Network_deformer<3> deformer(net, roles);
-  sm::Deform_options options;
-  options.number_of_steps = setup.steps;
-  if(setup.paper_solver)
-    options.solver = sm::Solver_options::paper();
-  options.max_substep_halvings = setup.max_substep_halvings;
-  // quality is computed at the final state in any case; per step it costs a
-  // full pass over 300k tetrahedra that the table does not use
-  options.quality_every_step = false;
-  sm::Pitch_motion<3> motion;
-  motion.amplitude_deg = amplitude;
-  motion.center = {0.5, 0.0, 0.0};
-  motion.axis = {0.0, 0.0, 1.0};
-  auto report = with_model_3d(model, [&](const auto& m) { return deformer.run(motion, m, options); });
-  if(keep)
-    *keep = std::move(deformer);
-  return report;
-}
-
-// Largest amplitude in [0, 90] whose run completes, by bisection to 1 degree.
-double largest_amplitude(const sm::Spring_network<3>& net, const std::vector<sm::Vertex_role>& roles,
-                         const std::string& model, double sign, const Setup& setup)
-{
-  double lo = 0, hi = 90;
-  if(pitch(net, roles, model, sign * hi, setup).completed)
-    return hi;
-  while(hi - lo > 1) {
-    const double mid = 0.5 * (lo + hi);
-    (pitch(net, roles, model, sign * mid, setup).completed ? lo : hi) = mid;
-  }
-  return lo;
-}
-
-std::string histogram(const sm::Skewness_histogram& h)
-{
-  std::string s;
-  for(double f : h.fractions) {
-    char b[8];
-    std::snprintf(b, sizeof b, "%3.0f", 100 * f);
-    s += b;
-  }
-  return s;
 }
 
 std::string angles_deg(const std::array<double, 6>& a)
@@ -168,171 +105,87 @@ std::string describe_failure(const sm::Spring_network<3>& net, const sm::Network
   return out.str();
 }
 
-Setup parse(int argc, char** argv)
-{
-  Setup s;
-  for(int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if(i + 1 >= argc) {
-        std::cerr << "naca0012_wing_3d: " << a << " needs a value\n";
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if(a == "--amplitude")
-      s.amplitude = std::stod(value());
-    else if(a == "--steps")
-      s.steps = std::stoul(value());
-    else if(a == "--report-dir")
-      s.report_dir = value();
-    else if(a == "--max-amplitude")
-      s.max_amplitude = true;
-    else if(a == "--max-substep-halvings")
-      s.max_substep_halvings = std::stoul(value());
-    else if(a == "--mesh-cache")
-      s.mesh_cache = value();
-    else if(a == "--mesh-only")
-      s.mesh_only = true;
-    else if(a == "--size-at-wing")
-      s.mesh.size_at_wing = std::stod(value());
-    else if(a == "--size-growth")
-      s.mesh.size_growth = std::stod(value());
-    else if(a == "--solver") {
-      const std::string v = value();
-      if(v != "paper" && v != "default") {
-        std::cerr << "naca0012_wing_3d: --solver takes paper or default\n";
-        std::exit(2);
-      }
-      s.paper_solver = v == "paper";
-    } else if(a == "--models") {
-      s.models.clear();
-      std::stringstream in(value());
-      for(std::string m; std::getline(in, m, ',');)
-        s.models.push_back(m);
-    } else {
-      std::cerr << "usage: naca0012_wing_3d [--amplitude DEG] [--steps N] [--report-dir DIR]\n"
-                   "                        [--max-amplitude] [--models a,b,...] [--solver default|paper]\n"
-                   "                        [--max-substep-halvings K] [--mesh-cache DIR] [--mesh-only]\n"
-                   "                        [--size-at-wing H] [--size-growth G]\n";
-      std::exit(a == "--help" ? 0 : 2);
-    }
-  }
-  return s;
-}
-
 int main(int argc, char** argv)
 {
-  const Setup setup = parse(argc, argv);
+  demo::Options options;
+  options.program = "naca0012_wing_3d";
+  options.amplitude = 30;
+  options.models = {"lineal", "lineal_p2", "blom", "zeng_ethier", "zeng_ethier_dihedral", "grid_scaled"};
+  std::string mesh_cache = SPRING_MOTION_MESH_CACHE_DIR;
+  bool mesh_only = false;
+  sm::Naca0012_wing_mesh_3_options mesh_options;
+  demo::parse(argc, argv, options,
+              "usage: naca0012_wing_3d [--amplitude DEG] [--steps N] [--report-dir DIR]\n"
+              "                        [--max-amplitude] [--models a,b,...] [--solver default|paper]\n"
+              "                        [--max-substep-halvings K] [--mesh-cache DIR] [--mesh-only]\n"
+              "                        [--size-at-wing H] [--size-growth G]\n",
+              [&](const std::string& a, auto& value) {
+                if(a == "--mesh-cache")
+                  mesh_cache = value();
+                else if(a == "--mesh-only")
+                  mesh_only = true;
+                else if(a == "--size-at-wing")
+                  mesh_options.size_at_wing = std::stod(value());
+                else if(a == "--size-growth")
+                  mesh_options.size_growth = std::stod(value());
+                else
+                  return false;
+                return true;
+              });
+
   bool generated = false;
   double seconds = 0;
-  const sm::Indexed_mesh<3> mesh = sm::naca0012_wing_mesh_3(setup.mesh, setup.mesh_cache, &generated, &seconds);
+  const sm::Indexed_mesh<3> mesh = sm::naca0012_wing_mesh_3(mesh_options, mesh_cache, &generated, &seconds);
   const auto net = sm::extract_spring_network(mesh).network;
   const auto roles = sm::assign_roles(net, sm::Moving_boundary_labels{{sm::body_patch}});
-  std::size_t moving = 0;
-  for(auto r : roles)
-    moving += r == sm::Vertex_role::moving;
   std::printf("NACA0012 wing: %zu nodes, %zu tetrahedra, %zu wing nodes (%s in %.1f s; cache %s)\n",
-              net.number_of_vertices(), net.number_of_elements(), moving,
-              generated ? "generated by Mesh_3" : "read from the cache", seconds, setup.mesh_cache.c_str());
-  std::printf("mesh options: %s\n", setup.mesh.key().c_str());
-  if(setup.mesh_only)
+              net.number_of_vertices(), net.number_of_elements(), demo::number_of_moving(roles),
+              generated ? "generated by Mesh_3" : "read from the cache", seconds, mesh_cache.c_str());
+  std::printf("mesh options: %s\n", mesh_options.key().c_str());
+  if(mesh_only)
     return 0;
   std::printf("pitch about the z axis through (0.5, 0), alpha = alpha_m sin(pi i / 2n), n = %zu, alpha_m = +/-%g deg\n"
               "solver: %s\n"
               "R = equiangle skewness (Eq. 13, six dihedral angles) of the tetrahedra touching the wing; "
               "histogram in %% per 0.1 bin\n\n",
-              setup.steps, setup.amplitude,
-              setup.paper_solver ? "SOR, stop when max change <= 5e-6 (the paper's Eq. 12)"
-                                 : "conjugate gradients + symmetric Gauss-Seidel, stop when estimated error <= 1e-6");
-  std::printf("%-20s %4s %4s %16s %8s %6s  %-30s %8s %11s %8s\n", "model", "dir", "done", "first_invalid",
-              "last_deg", "R_max", "R histogram 0..1 (%)", "min_size", "sweeps", "ms/step");
-  {
-    sm::Network_deformer<3> original(net, roles);
-    const auto r = sm::element_skewness(net, original.positions());
-    const auto h = sm::skewness_histogram(r, [&](std::size_t t) { return original.touches_moving(t); });
-    std::printf("%-20s %4s %4s %16s %8.2f %6.3f  %-30s %8.3f %11s %8s\n", "original", "", "", "", 0.0, h.max,
-                histogram(h).c_str(), 1.0, "", "");
-    std::fflush(stdout);
-    if(!setup.report_dir.empty()) {
-      // the original mesh's R near the wing, for the figures
-      std::string json = "{ \"quality\": { \"moving_boundary\": { \"histogram\": [";
-      for(std::size_t b = 0; b < h.fractions.size(); ++b)
-        json += (b ? ", " : "") + std::to_string(h.fractions[b]);
-      json += "], \"count\": " + std::to_string(h.count) + ", \"max\": " + std::to_string(h.max) + " } } }\n";
-      std::FILE* f = std::fopen((setup.report_dir + "/original_quality.json").c_str(), "w");
-      if(!f || std::fputs(json.c_str(), f) < 0 || std::fclose(f) != 0) {
-        std::cerr << "naca0012_wing_3d: cannot write " << setup.report_dir << "/original_quality.json\n";
-        return 1;
-      }
+              options.steps, options.amplitude, options.solver_description());
+
+  const demo::Pitch_demo<3> runs{
+      net, roles, options,
+      [&](const std::string& model, double amplitude, sm::Network_deformer<3>& deformer) {
+        sm::Deform_options deform = options.deform_options();
+        // quality is computed at the final state in any case; per step it costs
+        // a full pass over 300k tetrahedra that the table does not use
+        deform.quality_every_step = false;
+        sm::Pitch_motion<3> motion;
+        motion.amplitude_deg = amplitude;
+        motion.center = {0.5, 0.0, 0.0};
+        motion.axis = {0.0, 0.0, 1.0};
+        return with_model_3d(model, [&](const auto& m) { return deformer.run(motion, m, deform); });
+      },
+      20, 0};
+
+  const sm::Skewness_histogram h = demo::print_original(runs);
+  if(!options.report_dir.empty()) {
+    // the original mesh's R near the wing, for the figures
+    std::string json = "{ \"quality\": { \"moving_boundary\": { \"histogram\": [";
+    for(std::size_t b = 0; b < h.fractions.size(); ++b)
+      json += (b ? ", " : "") + std::to_string(h.fractions[b]);
+    json += "], \"count\": " + std::to_string(h.count) + ", \"max\": " + std::to_string(h.max) + " } } }\n";
+    std::FILE* f = std::fopen((options.report_dir + "/original_quality.json").c_str(), "w");
+    if(!f || std::fputs(json.c_str(), f) < 0 || std::fclose(f) != 0) {
+      std::cerr << "naca0012_wing_3d: cannot write " << options.report_dir << "/original_quality.json\n";
+      return 1;
     }
   }
   std::string failures;
-  for(const auto& model : setup.models) {
-    for(const double sign : {+1.0, -1.0}) {
-      sm::Network_deformer<3> final_state(net, roles);
-      const auto r = pitch(net, roles, model, sign * setup.amplitude, setup, &final_state);
-      std::size_t total = 0, most = 0;
-      for(const auto& s : r.steps) {
-        total += s.iterations;
-        most = std::max(most, s.iterations);
-      }
-      char invalid[32] = "-";
-      if(r.first_invalid)
-        std::snprintf(invalid, sizeof invalid, "%zu (%.1f deg)", r.first_invalid->step, r.first_invalid->angle_deg);
-      char sweeps[32];
-      std::snprintf(sweeps, sizeof sweeps, "%.0f/%zu", double(total) / double(r.steps.size()), most);
-      std::printf("%-20s %4s %4s %16s %8.2f %6.3f  %-30s %8.3f %11s %8.0f\n", model.c_str(), sign > 0 ? "+" : "-",
-                  r.completed ? "yes" : "no", invalid, r.final_angle_deg, r.quality_moving.max,
-                  histogram(r.quality_moving).c_str(), r.min_size_ratio, sweeps,
-                  1000 * r.seconds_total / double(r.steps.size()));
-      std::fflush(stdout);
-      if(r.first_invalid)
-        failures += model + (sign > 0 ? " +" : " -") + ":\n" + describe_failure(net, final_state, r);
-      if(!setup.report_dir.empty()) {
-        const std::string base = setup.report_dir + "/" + model + (sign > 0 ? "_pos" : "_neg");
-        sm::write_report_json(r, base + ".json");
-        std::vector<sm::Data_array> point_data, cell_data;
-        sm::motion_data_arrays(net, final_state.positions(), final_state.orientation_record(), point_data, cell_data);
-        sm::write_vtu(sm::make_indexed_mesh(net, final_state.positions()), base + ".vtu", point_data, cell_data);
-      }
-    }
-  }
+  demo::run_models(runs, [&](const std::string& model, double sign, const sm::Deform_report& r,
+                             const sm::Network_deformer<3>& last_valid) {
+    if(r.first_invalid)
+      failures += model + (sign > 0 ? " +" : " -") + ":\n" + describe_failure(net, last_valid, r);
+  });
   if(!failures.empty())
     std::printf("\nfirst inverted tetrahedra (up to 3 per run):\n%s", failures.c_str());
-  if(!setup.report_dir.empty()) {
-    sm::Network_deformer<3> original(net, roles);
-    std::vector<sm::Data_array> point_data, cell_data;
-    sm::motion_data_arrays(net, original.positions(), original.orientation_record(), point_data, cell_data);
-    sm::write_vtu(sm::make_indexed_mesh(net, original.positions()), setup.report_dir + "/original.vtu", point_data,
-                  cell_data);
-  }
-  if(setup.max_amplitude) {
-    std::printf("\nlargest amplitude whose %zu-step run completes (bisection to 1 deg, up to 90):\n", setup.steps);
-    std::printf("%-20s %10s %10s\n", "model", "positive", "negative");
-    std::string json = "{ \"format\": \"spring_motion.max_amplitude/1\", \"steps\": " + std::to_string(setup.steps) +
-                       ", \"resolution_deg\": 1, \"models\": {";
-    for(std::size_t k = 0; k < setup.models.size(); ++k) {
-      const auto& model = setup.models[k];
-      const double pos = largest_amplitude(net, roles, model, +1, setup);
-      const double neg = largest_amplitude(net, roles, model, -1, setup);
-      std::printf("%-20s %10.1f %10.1f\n", model.c_str(), pos, neg);
-      std::fflush(stdout);
-      char entry[160];
-      std::snprintf(entry, sizeof entry, "%s \"%s\": { \"positive_deg\": %.1f, \"negative_deg\": %.1f }",
-                    k ? "," : "", model.c_str(), pos, neg);
-      json += entry;
-    }
-    json += " } }\n";
-    if(!setup.report_dir.empty()) {
-      const std::string path = setup.report_dir + "/max_amplitude.json";
-      std::FILE* f = std::fopen((path + ".tmp").c_str(), "w");
-      if(!f || std::fputs(json.c_str(), f) < 0 || std::fclose(f) != 0 ||
-         std::rename((path + ".tmp").c_str(), path.c_str()) != 0) {
-        std::cerr << "naca0012_wing_3d: cannot write " << path << "\n";
-        return 1;
-      }
-    }
-  }
-  return 0;
+  demo::write_original_vtu(runs);
+  return demo::print_largest_amplitudes(runs, 90, 1) ? 0 : 1;
 }

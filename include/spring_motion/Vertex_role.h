@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <deque>
 #include <vector>
 
 namespace spring_motion {
@@ -85,6 +86,40 @@ std::vector<Vertex_role> assign_roles(const Spring_network<D>& net, const Role_f
     roles[i] = role(Vertex_info<D>{i, net.points[i], bool(net.on_boundary[i]), lb, le});
   }
   return roles;
+}
+
+/// The free vertices that no path of springs joins to a moving or fixed
+/// vertex, in increasing order: their displacement is undetermined (the
+/// system is singular), so a well-posed problem has none. Vertices that no
+/// element uses take no part and are never listed.
+template <int D>
+std::vector<Index> undetermined_vertices(const Spring_network<D>& net, const std::vector<Vertex_role>& roles)
+{
+  const std::size_t n = net.number_of_vertices();
+  std::vector<char> used(n, 0), reached(n, 0);
+  for(const auto& e : net.elements)
+    for(Index v : e)
+      used[v] = 1;
+  std::deque<Index> queue;
+  for(Index i = 0; i < n; ++i)
+    if(used[i] && roles[i] != Vertex_role::free) {
+      reached[i] = 1;
+      queue.push_back(i);
+    }
+  while(!queue.empty()) {
+    const Index i = queue.front();
+    queue.pop_front();
+    for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p)
+      if(!reached[net.adjacency[p]]) {
+        reached[net.adjacency[p]] = 1;
+        queue.push_back(net.adjacency[p]);
+      }
+  }
+  std::vector<Index> out;
+  for(Index i = 0; i < n; ++i)
+    if(used[i] && !reached[i])
+      out.push_back(i);
+  return out;
 }
 
 } // namespace spring_motion

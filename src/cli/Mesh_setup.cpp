@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <array>
-#include <deque>
 #include <sstream>
 #include <utility>
 
@@ -333,37 +332,16 @@ template <int D>
 void check_roles(const Mesh_setup<D>& setup, const std::vector<Vertex_role>& roles)
 {
   const auto& net = setup.network;
-  const std::size_t n = net.number_of_vertices();
-  std::vector<char> used(n, 0);
+  std::size_t moving = 0; // among the vertices some element uses
   for(const auto& e : net.elements)
     for(Index v : e)
-      used[v] = 1;
-  std::deque<Index> queue;
-  std::vector<char> reached(n, 0);
-  std::size_t moving = 0;
-  for(Index i = 0; i < n; ++i)
-    if(used[i] && roles[i] != Vertex_role::free) {
-      moving += roles[i] == Vertex_role::moving;
-      reached[i] = 1;
-      queue.push_back(i);
-    }
+      moving += roles[v] == Vertex_role::moving;
   if(moving == 0)
     throw Input_error(setup.path, 0, "no vertex moves (the moving set is empty): expected a moving boundary part "
                                      "with at least one vertex");
-  while(!queue.empty()) {
-    const Index i = queue.front();
-    queue.pop_front();
-    for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p)
-      if(!reached[net.adjacency[p]]) {
-        reached[net.adjacency[p]] = 1;
-        queue.push_back(net.adjacency[p]);
-      }
-  }
-  std::size_t unreached = 0;
-  Index example = 0;
-  for(Index i = 0; i < n; ++i)
-    if(used[i] && !reached[i] && unreached++ == 0)
-      example = i;
+  const std::vector<Index> undetermined = undetermined_vertices(net, roles);
+  const std::size_t unreached = undetermined.size();
+  const Index example = unreached > 0 ? undetermined.front() : 0;
   if(unreached > 0) {
     std::ostringstream msg;
     msg << unreached << " free vertices (for instance vertex " << setup.file->vertex_ids[example] << " at "

@@ -40,6 +40,14 @@ inline int thread_count(int requested, std::size_t items)
   return items < parallel_threshold() ? 1 : thread_count(requested);
 }
 
+/// The thread count for a loop over `items` items that each cost as much as
+/// several cheap ones (transcendental functions: angles, stiffness): such a
+/// loop pays for its parallel region at a sixteenth of the items.
+inline int heavy_thread_count(int requested, std::size_t items)
+{
+  return items * 16 < parallel_threshold() ? 1 : thread_count(requested);
+}
+
 } // namespace internal
 } // namespace spring_motion
 

@@ -82,6 +82,19 @@ inline double capped_pow(double x, double e)
 {
   if(x == 0)
     return e > 0 ? 0.0 : (e == 0 ? 1.0 : max_stiffness);
+  // |log2 x| <= |ilogb x| + 1, so below this bound x^e lies in (2^-800,
+  // 2^800), far inside the cap: no log needed, and the models' usual
+  // exponents (1 to 4, either sign) are a few products instead of pow
+  // (within 2 ulp of it; pow is what stiffness costs most)
+  if(std::abs(e) * double(std::abs(std::ilogb(x)) + 1) < 800) {
+    const double a = std::abs(e);
+    if(a == 1 || a == 2 || a == 3 || a == 4) {
+      const double x2 = x * x;
+      const double p = a == 1 ? x : a == 2 ? x2 : a == 3 ? x2 * x : x2 * x2;
+      return e > 0 ? p : 1.0 / p;
+    }
+    return std::pow(x, e);
+  }
   if(e * std::log(x) >= std::log(max_stiffness))
     return max_stiffness;
   return std::min(std::pow(x, e), max_stiffness);

@@ -575,6 +575,37 @@ void omega_table(const Case<D>& c)
     }
     std::printf("%6.2f %13zu%s %12zu %12.2f %12.2e\n", omega, sweeps, sor_ok ? " " : "+", iters, ms, err);
   }
+  // The multigrid preconditioner's two parameters: the strength threshold of
+  // the aggregation and the coarse-correction factor, each varied about the
+  // default with the other at its default.
+  std::printf("\n%s: multigrid preconditioner (default solver otherwise), same systems, 1 thread\n%9s %11s %8s %12s "
+              "%10s %12s\n",
+              c.name.c_str(), "strength", "correction", "levels", "CG iters", "CG ms", "CG max err");
+  const sm::internal::Aggregation_multigrid<D> defaults;
+  auto multigrid_row = [&](double strength, double correction) {
+    sm::internal::Free_system<D> f; // aggregates chosen afresh for this strength
+    f.build(c.net, caps.front().free);
+    f.multigrid().strength = strength;
+    f.multigrid().correction = correction;
+    std::size_t iters = 0;
+    double ms = 0, err = 0;
+    for(std::size_t k = 0; k < caps.size(); ++k) {
+      auto x = caps[k].x0;
+      sm::Solver_options o;
+      o.threads = 1;
+      const auto t0 = Clock::now();
+      const auto r = sm::internal::solve(c.net, caps[k].sys, caps[k].free, x, o, f);
+      ms += 1e3 * seconds_since(t0);
+      iters += r.iterations;
+      err = std::max(err, max_difference<D>(free_values<D>(caps[k], x), refs[k]));
+    }
+    std::printf("%9.2f %11.2f %8zu %12zu %10.2f %12.2e\n", strength, correction, f.multigrid().number_of_levels(),
+                iters, ms, err);
+  };
+  for(double strength : {0.0, 0.02, 0.04, 0.08, 0.12, 0.16, 0.25})
+    multigrid_row(strength, defaults.correction);
+  for(double correction : {1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.8})
+    multigrid_row(defaults.strength, correction);
 }
 
 // ---- output ----------------------------------------------------------------------------

@@ -81,6 +81,9 @@ void write_report_json(const Deform_report& r, std::ostream& out)
       << ", \"displacement\": " << array(m.displacement.begin(), m.displacement.end()) << " },\n";
   out << "  \"solver\": { \"name\": "
       << quoted(r.solver.method == Solver_method::sor ? "sor" : "conjugate_gradient")
+      << ", \"preconditioner\": "
+      << quoted(r.solver.method == Solver_method::sor ? "none"
+                : r.solver.preconditioner == Preconditioner::multigrid ? "multigrid" : "symmetric_gauss_seidel")
       << ", \"stopping\": " << quoted(r.solver.stopping == Stopping_rule::max_update ? "max_update" : "error_estimate")
       << ", \"relaxation_factor\": " << number(r.solver.relaxation_factor)
       << ", \"tolerance\": " << number(r.solver.tolerance) << ", \"max_iterations\": " << r.solver.max_iterations

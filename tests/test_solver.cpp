@@ -153,13 +153,17 @@ TEST_CASE("solvers: SOR and conjugate gradients match a direct sparse solve", "[
     const char* name;
     Solver_method method;
     double omega;
+    Preconditioner preconditioner = Preconditioner::multigrid;
   };
   for(const Case& c : {Case{"Gauss-Seidel", Solver_method::sor, 1.0}, Case{"SOR omega = 1.5", Solver_method::sor, 1.5},
                        Case{"SOR omega = 0.8", Solver_method::sor, 0.8},
-                       Case{"conjugate gradients", Solver_method::conjugate_gradient, 1.0}}) {
+                       Case{"conjugate gradients + multigrid", Solver_method::conjugate_gradient, 1.0},
+                       Case{"conjugate gradients + symmetric Gauss-Seidel", Solver_method::conjugate_gradient, 1.0,
+                            Preconditioner::symmetric_gauss_seidel}}) {
     Solver_options o;
     o.method = c.method;
     o.relaxation_factor = c.omega;
+    o.preconditioner = c.preconditioner;
     o.tolerance = tol;
     SECTION(std::string("scalar system (lineal springs), ") + c.name)
     {

@@ -117,6 +117,12 @@ TEST_CASE("thread determinism: 2D NACA0012 pitch, default solver and SOR, 1 vs 2
   const Pitch_motion<2> motion(20, {0.25, 0.0});
   SECTION("default solver") { compare_threads(net, roles, motion, Solver_options{}, 5); }
   SECTION("SOR (the paper's solver)") { compare_threads(net, roles, motion, Solver_options::paper(), 2); }
+  SECTION("conjugate gradients + symmetric Gauss-Seidel")
+  {
+    Solver_options o;
+    o.preconditioner = Preconditioner::symmetric_gauss_seidel;
+    compare_threads(net, roles, motion, o, 3);
+  }
   SECTION("default solver, point multicolour ordering")
   {
     Solver_options o;

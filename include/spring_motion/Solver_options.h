@@ -10,11 +10,26 @@ namespace spring_motion {
 /// point: the spring equilibrium of METHOD.md section 2.
 enum class Solver_method
 {
-  /// conjugate gradients preconditioned by a symmetric Gauss-Seidel sweep:
-  /// the default, many times fewer sweeps than SOR on graded meshes
+  /// conjugate gradients with the preconditioner of
+  /// `Solver_options::preconditioner` (a multigrid cycle by default): the
+  /// default, many times fewer sweeps than SOR on graded meshes
   conjugate_gradient,
   /// successive over-relaxation, the paper's solver (omega = 1: Gauss-Seidel)
   sor
+};
+
+/// What preconditions conjugate gradients (edge models; element models and
+/// the natural ordering always use symmetric Gauss-Seidel).
+enum class Preconditioner
+{
+  /// a symmetric Gauss-Seidel (SSOR) sweep in the solver's vertex ordering
+  symmetric_gauss_seidel,
+  /// one multigrid V-cycle: a symmetric Gauss-Seidel sweep on the mesh, the
+  /// coarse levels by aggregation of strongly coupled vertices (the
+  /// aggregates chosen once per network, their springs summed every step),
+  /// the coarsest solved directly. The default: several times fewer
+  /// iterations on graded meshes, where single-level sweeps converge slowly.
+  multigrid
 };
 
 /// The order in which Gauss-Seidel visits the free vertices (SOR sweeps and
@@ -57,9 +72,10 @@ struct Solver_options
   /// measured best on the NACA0012 meshes (docs/performance.md: 14x fewer
   /// sweeps than Gauss-Seidel on the coarse mesh, 20x on the fine one).
   double relaxation_factor = 1.9;
-  /// omega of the symmetric SOR sweep that preconditions conjugate gradients
-  /// (1: symmetric Gauss-Seidel). Must lie in (0, 2).
+  /// omega of the symmetric SOR sweep that preconditions conjugate gradients,
+  /// alone or as the multigrid smoother (1: Gauss-Seidel). Must lie in (0, 2).
   double preconditioner_relaxation_factor = 1.0;
+  Preconditioner preconditioner = Preconditioner::multigrid;
   /// epsilon, in mesh length units (see `stopping`)
   double tolerance = 1e-6;
   /// A solve that reaches this many iterations stops unconverged and says so.

@@ -21,7 +21,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstddef>
-#include <deque>
 #include <functional>
 #include <vector>
 
@@ -72,39 +71,20 @@ public:
     for(const auto& e : net_.elements)
       for(Index v : e)
         used[v] = 1;
-    std::deque<Index> queue;
-    std::vector<char> reached(n, 0);
     for(Index i = 0; i < n; ++i) {
       if(!used[i])
         continue; // a vertex no element uses takes no part
       if(roles_[i] == Vertex_role::free)
         free_.push_back(i);
-      else {
+      else
         (roles_[i] == Vertex_role::moving ? moving_ : fixed_).push_back(i);
-        reached[i] = 1;
-        queue.push_back(i);
-      }
     }
     SPRING_MOTION_CHECK(!moving_.empty(), "no vertex is moving: the set of moving vertices is empty");
-    while(!queue.empty()) {
-      const Index i = queue.front();
-      queue.pop_front();
-      for(Index p = net_.adjacency_offsets[i]; p < net_.adjacency_offsets[i + 1]; ++p) {
-        const Index j = net_.adjacency[p];
-        if(!reached[j]) {
-          reached[j] = 1;
-          queue.push_back(j);
-        }
-      }
-    }
-    std::size_t unreached = 0;
-    Index example = 0;
-    for(Index i : free_)
-      if(!reached[i] && unreached++ == 0)
-        example = i;
-    SPRING_MOTION_CHECK(unreached == 0, unreached << " free vertices (for instance vertex " << example
-                                                  << ") are connected to no constrained vertex: "
-                                                     "their displacement is undetermined (singular system)");
+    const std::vector<Index> unreached = undetermined_vertices(net_, roles_);
+    SPRING_MOTION_CHECK(unreached.empty(), unreached.size() << " free vertices (for instance vertex "
+                                                            << (unreached.empty() ? 0 : unreached.front())
+                                                            << ") are connected to no constrained vertex: "
+                                                               "their displacement is undetermined (singular system)");
     initial_measure_.resize(net_.number_of_elements());
     touches_moving_.assign(net_.number_of_elements(), 0);
     for(std::size_t t = 0; t < net_.number_of_elements(); ++t) {
@@ -319,7 +299,7 @@ private:
       for(int c = 0; c < D; ++c)
         delta[i][c] = net_.points[i][c] - positions_[i][c];
     Stiffness_context ctx{D, net_.longest_initial_edge};
-    internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, angle_scratch_, threads);
+    internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, threads);
     internal::assemble_system(net_, positions_, model, stiffness_, system_, threads);
     for(Index i : free_)
       SPRING_MOTION_CHECK(system_.block || system_.diagonal[i] > 0,
@@ -379,7 +359,7 @@ private:
   Orientation_record record_;
   std::vector<double> initial_measure_;
   std::vector<char> touches_moving_;
-  std::vector<double> stiffness_, angle_scratch_;
+  std::vector<double> stiffness_;
   internal::Linear_system<D> system_;
   internal::Free_system<D> free_system_; // ordering built on the first scalar solve
   double t_ = 0;

@@ -116,10 +116,12 @@ Deform_settings parse_deform(const Arguments& a)
     s.options.solver = Solver_options::paper();
   else if(solver == "sor")
     s.options.solver.method = Solver_method::sor;
+  else if(solver == "cg-sgs")
+    s.options.solver.preconditioner = Preconditioner::symmetric_gauss_seidel;
   else if(solver != "cg")
-    throw Usage_error("--solver: expected cg, sor or paper, found '" + solver + "'");
+    throw Usage_error("--solver: expected cg, cg-sgs, sor or paper, found '" + solver + "'");
   if(a.has("omega")) {
-    if(solver == "cg")
+    if(solver == "cg" || solver == "cg-sgs")
       throw Usage_error("--omega is the relaxation factor of SOR: use it with --solver sor or paper");
     const double omega = a.number("omega", 1);
     if(!(omega > 0 && omega < 2))

@@ -33,7 +33,7 @@ See docs/cli.md.
 const char* deform_help()
 {
   return R"(usage: spring-motion deform MESH --moving REF[,REF...] [--fixed REF[,REF...]] MOTION
-                            [--steps N] [--model NAME] [--solver cg|sor|paper] [--omega W]
+                            [--steps N] [--model NAME] [--solver cg|cg-sgs|sor|paper] [--omega W]
                             [--tolerance E] [--max-iterations N] [--max-substep-halvings K]
                             [--threads T] [--output OUT]... [--every K] [--report R.json]
                             [--quiet | --progress]
@@ -74,8 +74,10 @@ options:
   --steps N            increments (default 100)
   --model NAME         stiffness model: lineal, lineal_p2, blom, zeng_ethier,
                        grid_scaled (default), torsional (2D only)
-  --solver NAME        cg: conjugate gradients + symmetric Gauss-Seidel, stopped
-                       when the estimated error <= tolerance (default);
+  --solver NAME        cg: conjugate gradients preconditioned by a multigrid
+                       cycle, stopped when the estimated error <= tolerance
+                       (default); cg-sgs: the same with a symmetric
+                       Gauss-Seidel sweep as the preconditioner;
                        sor: SOR with --omega, same stopping rule;
                        paper: SOR stopped when no component changes by more than
                        5e-6 (the paper's Eq. 12)

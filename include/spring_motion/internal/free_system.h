@@ -5,6 +5,7 @@
 #include <spring_motion/Error.h>
 #include <spring_motion/Solver_options.h>
 #include <spring_motion/Spring_network.h>
+#include <spring_motion/internal/aggregation_multigrid.h>
 #include <spring_motion/internal/linear_system.h>
 #include <spring_motion/internal/threads.h>
 
@@ -257,8 +258,18 @@ public:
     const double r_max = max_abs(r_, threads);
     SPRING_MOTION_CHECK(std::isfinite(r_max), "the solver's initial residual is not finite");
     Stopping_test stop(options, true);
+    const bool mg = options.preconditioner == Preconditioner::multigrid;
+    if(mg && r_max > 0 && nf > 0) {
+      const Csr_view fine{order_.size(), row_offsets_.data(), col_.data(), val_.data(), diag_.data()};
+      if(!multigrid_.built())
+        multigrid_.build(fine);
+      multigrid_.load(fine);
+    }
+    const auto precondition = [&] {
+      this->precondition(options.preconditioner_relaxation_factor, threads, mg && multigrid_.number_of_levels() > 0);
+    };
     if(r_max > 0 && nf > 0) {
-      precondition(options.preconditioner_relaxation_factor, threads);
+      precondition();
       copy(z_, p_, threads);
       double rz = dot(r_, z_, threads);
       while(report.iterations < options.max_iterations) {
@@ -281,7 +292,7 @@ public:
           report.converged = true;
           break;
         }
-        precondition(options.preconditioner_relaxation_factor, threads);
+        precondition();
         const double rz_new = dot(r_, z_, threads);
         const double beta = rz_new / rz;
         rz = rz_new;
@@ -367,10 +378,13 @@ private:
     return m;
   }
 
-  // z = M^{-1} r, M the symmetric Gauss-Seidel (SSOR for omega != 1)
-  // splitting of A in the multicolour order: a forward then a backward sweep
-  // on A z = r from z = 0. M is symmetric positive definite for omega in (0, 2).
-  void precondition(double omega, int threads)
+  // z = M^{-1} r from z = 0: a forward sweep on A z = r, with `multigrid`
+  // the coarse correction of the residual left, and a backward sweep. Without
+  // it M is the symmetric Gauss-Seidel (SSOR for omega != 1) splitting of A in
+  // the multicolour order; with it, one V-cycle. The same smoothing before
+  // and after, and a symmetric coarse cycle, keep M symmetric positive
+  // definite (omega in (0, 2)).
+  void precondition(double omega, int threads, bool multigrid)
   {
     const int nt = team(threads);
     const long nf = long(order_.size());
@@ -378,7 +392,32 @@ private:
     for(long k = 0; k < nf; ++k)
       z_[std::size_t(k)] = Row{};
     sweep(z_, r_, omega, threads, true, false);
+    if(multigrid)
+      coarse_correction(threads);
     sweep(z_, r_, omega, threads, false, false);
+  }
+
+  // z += correction P cycle(P^T (r - A z))
+  void coarse_correction(int threads)
+  {
+    const int nt = team(threads);
+    const long nf = long(order_.size());
+    s_.resize(order_.size());
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long k = 0; k < nf; ++k) {
+      const Row y = apply(z_, std::size_t(k));
+      for(int c = 0; c < D; ++c)
+        s_[std::size_t(k)][c] = r_[std::size_t(k)][c] - y[c];
+    }
+    multigrid_.restrict_from(s_);
+    multigrid_.cycle();
+    const double a = multigrid_.correction;
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long k = 0; k < nf; ++k) {
+      const Row& e = multigrid_.coarse_solution(multigrid_.parent(std::size_t(k)));
+      for(int c = 0; c < D; ++c)
+        z_[std::size_t(k)][c] += a * e[c];
+    }
   }
 
   void copy(const std::vector<Row>& a, std::vector<Row>& b, int threads)
@@ -390,10 +429,11 @@ private:
       b[std::size_t(k)] = a[std::size_t(k)];
   }
 
-  // Fixed-chunk reductions: the same partial sums in the same order for any
-  // thread count.
-  template <class F>
-  double chunked_sum(F&& f, int threads)
+  // Fixed-chunk reductions: body(begin, end) reduces the rows [begin, end)
+  // of one chunk, and the chunks' results are folded in chunk order, so the
+  // result is the same for any thread count.
+  template <class Body, class Combine>
+  double chunked_reduce(Body&& body, Combine&& combine, int threads)
   {
     const std::size_t nf = order_.size();
     const long chunks = long((nf + reduction_chunk - 1) / reduction_chunk);
@@ -401,16 +441,48 @@ private:
     const int nt = team(threads);
 #pragma omp parallel for schedule(static) num_threads(nt)
     for(long ch = 0; ch < chunks; ++ch) {
-      const std::size_t b = std::size_t(ch) * reduction_chunk, e = std::min(nf, b + reduction_chunk);
-      double s = 0;
-      for(std::size_t k = b; k < e; ++k)
-        s += f(k);
-      partial_[std::size_t(ch)] = s;
+      const std::size_t b = std::size_t(ch) * reduction_chunk;
+      partial_[std::size_t(ch)] = body(b, std::min(nf, b + reduction_chunk));
     }
-    double s = 0;
+    double m = 0;
     for(double v : partial_)
-      s += v;
-    return s;
+      m = combine(m, v);
+    return m;
+  }
+
+  static double sticky_combine(double a, double v)
+  {
+    sticky_max(a, v);
+    return a;
+  }
+
+  // sum over rows of f(k)
+  template <class F>
+  double chunked_sum(F&& f, int threads)
+  {
+    return chunked_reduce(
+        [&](std::size_t b, std::size_t e) {
+          double s = 0;
+          for(std::size_t k = b; k < e; ++k)
+            s += f(k);
+          return s;
+        },
+        [](double a, double v) { return a + v; }, threads);
+  }
+
+  // max over rows and components of f(k, c); a NaN wins (sticky_max)
+  template <class F>
+  double chunked_max(F&& f, int threads)
+  {
+    return chunked_reduce(
+        [&](std::size_t b, std::size_t e) {
+          double m = 0;
+          for(std::size_t k = b; k < e; ++k)
+            for(int c = 0; c < D; ++c)
+              sticky_max(m, f(k, c));
+          return m;
+        },
+        sticky_combine, threads);
   }
 
   double dot(const std::vector<Row>& a, const std::vector<Row>& b, int threads)
@@ -427,73 +499,36 @@ private:
 
   double max_abs(const std::vector<Row>& a, int threads)
   {
-    const std::size_t nf = a.size();
-    const long chunks = long((nf + reduction_chunk - 1) / reduction_chunk);
-    partial_.assign(std::size_t(chunks), 0.0);
-    const int nt = team(threads);
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long ch = 0; ch < chunks; ++ch) {
-      const std::size_t b = std::size_t(ch) * reduction_chunk, e = std::min(nf, b + reduction_chunk);
-      double m = 0;
-      for(std::size_t k = b; k < e; ++k)
-        for(int c = 0; c < D; ++c)
-          sticky_max(m, std::abs(a[k][c]));
-      partial_[std::size_t(ch)] = m;
-    }
-    double m = 0;
-    for(double v : partial_)
-      sticky_max(m, v);
-    return m;
+    return chunked_max([&](std::size_t k, int c) { return std::abs(a[k][c]); }, threads);
   }
 
   // x += alpha p, r -= alpha q; returns max |alpha p|
   double axpy_max(double alpha, int threads)
   {
-    const std::size_t nf = order_.size();
-    const long chunks = long((nf + reduction_chunk - 1) / reduction_chunk);
-    partial_.assign(std::size_t(chunks), 0.0);
-    const int nt = team(threads);
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long ch = 0; ch < chunks; ++ch) {
-      const std::size_t b = std::size_t(ch) * reduction_chunk, e = std::min(nf, b + reduction_chunk);
-      double m = 0;
-      for(std::size_t k = b; k < e; ++k)
-        for(int c = 0; c < D; ++c) {
+    return chunked_max(
+        [&](std::size_t k, int c) {
           const double d = alpha * p_[k][c];
           x_[k][c] += d;
           r_[k][c] -= alpha * q_[k][c];
-          sticky_max(m, std::abs(d));
-        }
-      partial_[std::size_t(ch)] = m;
-    }
-    double m = 0;
-    for(double v : partial_)
-      sticky_max(m, v);
-    return m;
+          return std::abs(d);
+        },
+        threads);
   }
 
   // max over rows and components of |x_k - local solve_k|: d_k^{-1} |(b - A x)_k|
   double scaled_residual(int threads)
   {
-    const std::size_t nf = order_.size();
-    const long chunks = long((nf + reduction_chunk - 1) / reduction_chunk);
-    partial_.assign(std::size_t(chunks), 0.0);
-    const int nt = team(threads);
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long ch = 0; ch < chunks; ++ch) {
-      const std::size_t b = std::size_t(ch) * reduction_chunk, e = std::min(nf, b + reduction_chunk);
-      double m = 0;
-      for(std::size_t k = b; k < e; ++k) {
-        const Row y = apply(x_, k);
-        for(int c = 0; c < D; ++c)
-          sticky_max(m, std::abs((b_[k][c] - y[c]) * inv_diag_[k]));
-      }
-      partial_[std::size_t(ch)] = m;
-    }
-    double m = 0;
-    for(double v : partial_)
-      sticky_max(m, v);
-    return m;
+    return chunked_reduce(
+        [&](std::size_t b, std::size_t e) {
+          double m = 0;
+          for(std::size_t k = b; k < e; ++k) {
+            const Row y = apply(x_, k);
+            for(int c = 0; c < D; ++c)
+              sticky_max(m, std::abs((b_[k][c] - y[c]) * inv_diag_[k]));
+          }
+          return m;
+        },
+        sticky_combine, threads);
   }
 
   bool built_ = false;
@@ -501,7 +536,13 @@ private:
   std::vector<Index> row_offsets_, col_, src_;
   std::vector<Index> bnd_offsets_, bnd_vertex_, bnd_src_;
   std::vector<double> val_, diag_, inv_diag_, partial_;
-  std::vector<Row> b_, x_, r_, z_, p_, q_;
+  std::vector<Row> b_, x_, r_, z_, p_, q_, s_;
+  Aggregation_multigrid<D> multigrid_;
+
+public:
+  /// The multigrid levels of the last multigrid-preconditioned solve.
+  const Aggregation_multigrid<D>& multigrid() const { return multigrid_; }
+  Aggregation_multigrid<D>& multigrid() { return multigrid_; }
 };
 
 /// Solves a scalar system through `fs` (built on first use for these free

@@ -39,8 +39,9 @@ std::map<Edge_key, double> edge_stiffness(std::vector<P2> points, std::vector<st
                                           const Model& model)
 {
   const auto net = make_spring_network<2>(std::move(points), std::move(triangles));
-  std::vector<double> k;
-  internal::compute_edge_stiffness(net, net.points, model, Stiffness_context{2, net.longest_initial_edge}, k, 1);
+  std::vector<double> k, scratch;
+  internal::compute_edge_stiffness(net, net.points, model, Stiffness_context{2, net.longest_initial_edge}, k,
+                                   scratch, 1);
   std::map<Edge_key, double> out;
   for(std::size_t e = 0; e < net.number_of_edges(); ++e)
     out[{net.edges[e][0], net.edges[e][1]}] = k[e];

@@ -40,8 +40,8 @@ struct Corner
     Stiffness_context ctx;
     ctx.dimension = 3;
     ctx.longest_initial_edge = net.longest_initial_edge;
-    std::vector<double> k;
-    internal::compute_edge_stiffness(net, net.points, model, ctx, k, 1);
+    std::vector<double> k, scratch;
+    internal::compute_edge_stiffness(net, net.points, model, ctx, k, scratch, 1);
     return k;
   }
   std::size_t edge(Index a, Index b) const

@@ -48,14 +48,15 @@ struct Spring_network
   // reached through edge adjacency_edge[...]
   std::vector<Index> adjacency_offsets, adjacency, adjacency_edge;
 
-  // edge -> the (element, local edge) slots around it, as element * edges_per_element + local
-  std::vector<Index> edge_slot_offsets, edge_slots;
+  // edge -> the (element, local edge) slots around it, as element * edges_per_element + local;
+  // slot_position inverts edge_slots (slot -> its index there)
+  std::vector<Index> edge_slot_offsets, edge_slots, slot_position;
 
   // 3D only: the unique triangular faces, their edges (local edge k opposite
   // local vertex k) and edge -> (face, local) slots as face * 3 + local.
   std::vector<std::array<Index, 3>> faces;
   std::vector<Index> face_edges;
-  std::vector<Index> edge_face_slot_offsets, edge_face_slots;
+  std::vector<Index> edge_face_slot_offsets, edge_face_slots, face_slot_position;
 
   std::vector<Facet> boundary_facets;
   std::vector<char> on_boundary;      // per vertex
@@ -128,6 +129,7 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
     });
     net.element_edges.resize(m * E);
     net.edge_slots.resize(recs.size());
+    net.slot_position.resize(recs.size());
     for(std::size_t r = 0; r < recs.size(); ++r) {
       if(r == 0 || recs[r].a != recs[r - 1].a || recs[r].b != recs[r - 1].b) {
         net.edges.push_back({recs[r].a, recs[r].b});
@@ -135,6 +137,7 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
       }
       net.element_edges[recs[r].slot] = Index(net.edges.size() - 1);
       net.edge_slots[r] = recs[r].slot;
+      net.slot_position[recs[r].slot] = Index(r);
     }
     net.edge_slot_offsets.push_back(Index(recs.size()));
   }
@@ -240,9 +243,11 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
     std::sort(recs.begin(), recs.end());
     net.edge_face_slot_offsets.assign(net.edges.size() + 1, 0);
     net.edge_face_slots.resize(recs.size());
+    net.face_slot_position.resize(recs.size());
     for(std::size_t r = 0; r < recs.size(); ++r) {
       ++net.edge_face_slot_offsets[recs[r].first + 1];
       net.edge_face_slots[r] = recs[r].second;
+      net.face_slot_position[recs[r].second] = Index(r);
     }
     for(std::size_t e = 0; e < net.edges.size(); ++e)
       net.edge_face_slot_offsets[e + 1] += net.edge_face_slot_offsets[e];

@@ -299,7 +299,7 @@ private:
       for(int c = 0; c < D; ++c)
         delta[i][c] = net_.points[i][c] - positions_[i][c];
     Stiffness_context ctx{D, net_.longest_initial_edge};
-    internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, threads);
+    internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, angle_scratch_, threads);
     internal::assemble_system(net_, positions_, model, stiffness_, system_, threads);
     for(Index i : free_)
       SPRING_MOTION_CHECK(system_.block || system_.diagonal[i] > 0,
@@ -359,7 +359,7 @@ private:
   Orientation_record record_;
   std::vector<double> initial_measure_;
   std::vector<char> touches_moving_;
-  std::vector<double> stiffness_;
+  std::vector<double> stiffness_, angle_scratch_;
   internal::Linear_system<D> system_;
   internal::Free_system<D> free_system_; // ordering built on the first scalar solve
   double t_ = 0;

@@ -84,43 +84,26 @@ inline std::array<double, 3> triangle_angles(const std::array<double, N>& p0, co
   return {a0, a1, angle_between(sub<N>(p0, p2), sub<N>(p1, p2))};
 }
 
-/// The angle of triangle (p0, p1, p2) at vertex k alone: bitwise
-/// triangle_angles(p0, p1, p2)[k].
-template <int N>
-inline double triangle_angle(const std::array<double, N>& p0, const std::array<double, N>& p1,
-                             const std::array<double, N>& p2, int k)
-{
-  switch(k) {
-  case 0: return angle_between(sub<N>(p1, p0), sub<N>(p2, p0));
-  case 1: return angle_between(sub<N>(p0, p1), sub<N>(p2, p1));
-  default: return angle_between(sub<N>(p0, p2), sub<N>(p1, p2));
-  }
-}
-
-/// The interior dihedral angle of tetrahedron p at its local edge k
-/// (Simplex_tables<3>): the angle between the projections of the two other
-/// vertices onto the plane orthogonal to the edge.
-inline double dihedral_angle(const std::array<std::array<double, 3>, 4>& p, int k)
-{
-  using T = Simplex_tables<3>;
-  const auto& a = p[T::edge[k][0]];
-  const auto e = sub<3>(p[T::edge[k][1]], a);
-  const double ee = dot<3>(e, e);
-  auto u = sub<3>(p[T::other[k][0]], a);
-  auto w = sub<3>(p[T::other[k][1]], a);
-  const double su = dot<3>(u, e) / ee, sw = dot<3>(w, e) / ee;
-  for(int c = 0; c < 3; ++c) {
-    u[c] -= su * e[c];
-    w[c] -= sw * e[c];
-  }
-  return angle_between(u, w);
-}
-/// All six, in the local edge order.
+/// Interior dihedral angles of tetrahedron p at its six edges, in the local
+/// edge order of Simplex_tables<3>: the angle between the projections of the
+/// two other vertices onto the plane orthogonal to the edge.
 inline std::array<double, 6> dihedral_angles(const std::array<std::array<double, 3>, 4>& p)
 {
+  using T = Simplex_tables<3>;
   std::array<double, 6> out;
-  for(int k = 0; k < 6; ++k)
-    out[k] = dihedral_angle(p, k);
+  for(int k = 0; k < 6; ++k) {
+    const auto& a = p[T::edge[k][0]];
+    const auto e = sub<3>(p[T::edge[k][1]], a);
+    const double ee = dot<3>(e, e);
+    auto u = sub<3>(p[T::other[k][0]], a);
+    auto w = sub<3>(p[T::other[k][1]], a);
+    const double su = dot<3>(u, e) / ee, sw = dot<3>(w, e) / ee;
+    for(int c = 0; c < 3; ++c) {
+      u[c] -= su * e[c];
+      w[c] -= sw * e[c];
+    }
+    out[k] = angle_between(u, w);
+  }
   return out;
 }
 

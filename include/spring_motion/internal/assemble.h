@@ -40,36 +40,45 @@ inline std::array<double, Spring_network<D>::edges_per_element> element_edge_ang
     return dihedral_angles(p);
 }
 
-/// The angle of element t at its local edge k: the facing angle of a
-/// triangle, the dihedral angle of a tetrahedron (bitwise
-/// element_edge_angles(...)[k]).
-template <int D>
-inline double element_edge_angle(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
-                                  std::size_t t, int k)
-{
-  const auto& el = net.elements[t];
-  if constexpr(D == 2)
-    return triangle_angle<2>(x[el[0]], x[el[1]], x[el[2]], k);
-  else
-    return dihedral_angle({x[el[0]], x[el[1]], x[el[2]], x[el[3]]}, k);
-}
-
-/// Edge stiffness k_e of `model` at positions x. Throws when the model returns
-/// a negative or non-finite value.
+/// Edge stiffness k_e of `model` at positions x. `angles` is scratch space.
+/// Throws when the model returns a negative or non-finite value.
 ///
-/// Each edge computes the angles it needs itself, from its slots (element
-/// t, local edge k) and the positions: every angle belongs to exactly one
-/// edge, so no angle is computed twice, and the edge loop reads only the
-/// positions (tens of bytes a vertex) instead of gathering from an angle
-/// array by element (a random read from 48 bytes a tetrahedron, which on a
-/// large mesh misses the cache at almost every angle).
+/// The angles are computed element by element (or face by face) and stored
+/// edge by edge, at their slot's position in edge_slots: the edge loop then
+/// reads each edge's angles as one contiguous run. Read element by element
+/// instead, the angles of an edge lie far apart, and on the wing that gather
+/// cost more than computing them.
 template <int D, class Model>
 void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
-                            const Model& model, const Stiffness_context& ctx, std::vector<double>& k, int threads)
+                            const Model& model, const Stiffness_context& ctx, std::vector<double>& k,
+                            std::vector<double>& angles, int threads)
 {
   constexpr int E = Spring_network<D>::edges_per_element;
   const Angle_kind kind = model.angle_kind(D);
+  const long m = long(net.number_of_elements());
   const bool by_face = (kind == Angle_kind::face && D == 3);
+  if(kind != Angle_kind::none) {
+    if(!by_face) {
+      angles.resize(std::size_t(m) * E);
+#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
+      for(long t = 0; t < m; ++t) {
+        const auto a = element_edge_angles<D>(element_points(net, x, std::size_t(t)));
+        for(int j = 0; j < E; ++j)
+          angles[net.slot_position[std::size_t(t) * E + std::size_t(j)]] = a[std::size_t(j)];
+      }
+    } else if constexpr(D == 3) {
+      const long nf = long(net.faces.size());
+      angles.resize(std::size_t(nf) * 3);
+#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(nf)))
+      for(long f = 0; f < nf; ++f) {
+        const auto& F = net.faces[std::size_t(f)];
+        const auto a = triangle_angles<3>(x[F[0]], x[F[1]], x[F[2]]);
+        for(int j = 0; j < 3; ++j)
+          angles[net.face_slot_position[3 * std::size_t(f) + std::size_t(j)]] = a[std::size_t(j)];
+      }
+    }
+  }
+  const auto& off = by_face ? net.edge_face_slot_offsets : net.edge_slot_offsets;
   const long ne = long(net.number_of_edges());
   k.resize(std::size_t(ne));
   long bad = -1;
@@ -77,32 +86,11 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   for(long e = 0; e < ne; ++e) {
     const auto& ed = net.edges[std::size_t(e)];
     const double l = distance<D>(x[ed[0]], x[ed[1]]); // > 0 for a tiny edge too
-    // enough for any edge of a sane mesh; a wilder one takes the slow path
-    std::array<double, 64> local;
-    std::vector<double> spill;
     const double* a = nullptr;
     std::size_t na = 0;
     if(kind != Angle_kind::none) {
-      const auto& off = by_face ? net.edge_face_slot_offsets : net.edge_slot_offsets;
-      const auto& slots = by_face ? net.edge_face_slots : net.edge_slots;
+      a = angles.data() + off[std::size_t(e)];
       na = off[std::size_t(e) + 1] - off[std::size_t(e)];
-      double* buf = local.data();
-      if(na > local.size()) {
-        spill.resize(na);
-        buf = spill.data();
-      }
-      for(std::size_t s = 0; s < na; ++s) {
-        const Index slot = slots[off[std::size_t(e)] + s];
-        if constexpr(D == 3) {
-          if(by_face) { // slot 3 f + j: face f's angle at its vertex j
-            const auto& F = net.faces[slot / 3];
-            buf[s] = triangle_angle<3>(x[F[0]], x[F[1]], x[F[2]], int(slot % 3));
-            continue;
-          }
-        }
-        buf[s] = element_edge_angle<D>(net, x, slot / E, int(slot % E));
-      }
-      a = buf;
     }
     // a zero-length edge (coincident vertices) never reaches a model's 1/l
     const double v = l > 0 ? model(l, a, na, ctx) : 0.0;

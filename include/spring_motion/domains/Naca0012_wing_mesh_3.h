@@ -47,6 +47,13 @@ struct Naca0012_wing_mesh_3_options
   double facet_distance = 0.004;       ///< Mesh_3 facet distance bound near the wing (curvature)
   double facet_angle = 25;             ///< Mesh_3 facet angle bound (degrees)
   double cell_radius_edge_ratio = 3;   ///< Mesh_3 radius-edge bound
+  /// the smallest dihedral angle (degrees) Mesh_3's sliver perturbation and
+  /// exudation aim for. Raising it does not remove the slivers that limit the
+  /// wing's motion: those have an edge on a tip feature curve, whose vertices
+  /// neither optimiser moves (docs/naca0012_3d/README.md).
+  double sliver_bound = 10;
+  /// iterations of Mesh_3's ODT smoothing before perturbation (0: none)
+  std::size_t odt_iterations = 0;
   /// A short text listing every parameter, used to name the cache file.
   std::string key() const;
 };

@@ -155,7 +155,7 @@ public:
   /// window instead of its geometric mean, for iterations whose changes do not
   /// shrink monotonically (conjugate gradients).
   explicit Stopping_test(const Solver_options& o, bool worst_ratio = false)
-      : rule_(o.stopping), tol_(o.tolerance), worst_(worst_ratio)
+      : rule_(o.stopping), tol_(o.tolerance), worst_(worst_ratio), margin_(worst_ratio ? 0.5 : 1.0)
   {
   }
 
@@ -183,7 +183,11 @@ public:
     // a slowly contracting sweep stops there with an error far above tol
     if(rule_ == Stopping_rule::max_update)
       return update <= tol_;
-    return estimate_ <= tol_ && update <= tol_;
+    // Conjugate gradients stop at half the tolerance: their changes shrink
+    // irregularly, and with the multigrid preconditioner (a few iterations,
+    // each contracting much) the estimate fell short of the true error by up
+    // to 1.3x on the benchmark's systems (spring_motion_bench --omega-table)
+    return estimate_ <= margin_ * tol_ && update <= tol_;
   }
   void before_next() { oldest_ = history_[count_ % window_]; }
   double estimate() const { return estimate_; }
@@ -194,6 +198,7 @@ private:
   Stopping_rule rule_;
   double tol_;
   bool worst_;
+  double margin_;
   std::array<double, window_> history_{}, ratio_{};
   std::size_t count_ = 0;
   double oldest_ = 0, last_ = 0, estimate_ = std::numeric_limits<double>::infinity();

@@ -52,9 +52,9 @@ void require_identical(const Network_deformer<D>& a, const Deform_report& ra, co
   CHECK(differing == 0);
 }
 
-template <int D, class Motion>
+template <int D, class Motion, class Model = Grid_scaled_stiffness>
 void compare_threads(const Spring_network<D>& net, const std::vector<Vertex_role>& roles, const Motion& motion,
-                     Solver_options solver, std::size_t steps)
+                     Solver_options solver, std::size_t steps, const Model& model = {})
 {
   Force_parallel force;
   Deform_options options;
@@ -62,10 +62,10 @@ void compare_threads(const Spring_network<D>& net, const std::vector<Vertex_role
   options.solver = solver;
   options.solver.threads = 1;
   Network_deformer<D> one(net, roles);
-  const auto r1 = one.run(motion, Grid_scaled_stiffness{}, options);
+  const auto r1 = one.run(motion, model, options);
   options.solver.threads = 2;
   Network_deformer<D> two(net, roles);
-  const auto r2 = two.run(motion, Grid_scaled_stiffness{}, options);
+  const auto r2 = two.run(motion, model, options);
   REQUIRE(r1.steps.size() == steps); // the runs did move the mesh
   REQUIRE(r1.steps.back().iterations > 0);
   require_identical(one, r1, two, r2);
@@ -122,6 +122,10 @@ TEST_CASE("thread determinism: 2D NACA0012 pitch, default solver and SOR, 1 vs 2
     Solver_options o;
     o.preconditioner = Preconditioner::symmetric_gauss_seidel;
     compare_threads(net, roles, motion, o, 3);
+  }
+  SECTION("torsional springs (element matrices in parallel, block system)")
+  {
+    compare_threads(net, roles, motion, Solver_options{}, 2, Torsional_stiffness{});
   }
   SECTION("default solver, point multicolour ordering")
   {

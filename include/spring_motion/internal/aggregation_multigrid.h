@@ -55,8 +55,8 @@ public:
   std::size_t coarsest_rows = 64;
   /// the coarse correction is scaled by this factor: over-correction makes up
   /// for the too-high energy of piecewise-constant coarse functions
-  /// (`spring_motion_bench --omega-table` measures it: 1.3-1.5 take the
-  /// fewest iterations on the NACA0012 meshes)
+  /// (`spring_motion_bench --omega-table` measures it; docs/performance.md
+  /// says how 1.3 was chosen and what the latest table says against it)
   double correction = 1.3;
 
   /// a coarsest level larger than this (coarsening stalled) is smoothed by
@@ -67,7 +67,7 @@ public:
   std::size_t number_of_levels() const { return levels_.size(); }
   std::size_t rows(std::size_t level) const { return levels_[level].n; }
 
-  /// Chooses the aggregates of every level from the fine matrix `a`.
+  /// Chooses the aggregates of every level from the fine matrix.
   void build(const Csr_view& fine)
   {
     levels_.clear();

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Builds everything with AddressSanitizer and UndefinedBehaviorSanitizer
-# (-DSPRING_MOTION_SANITIZE=ON) and runs the default test suite under them.
+# Builds with AddressSanitizer and UndefinedBehaviorSanitizer
+# (-DSPRING_MOTION_SANITIZE=ON, in build-sanitize) and runs the default test
+# suite under them; given test program names (scripts/test_sanitized.sh
+# test_fp_traps test_substepping ...), builds and runs only those.
 # Assumes the dependencies are installed (scripts/install_dependencies.sh).
 # -O1 keeps the instrumented CGAL code fast enough for CI. The consumer-package
 # test is left out: it only checks that an installed package configures and
@@ -9,7 +11,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DSPRING_MOTION_SANITIZE=ON
-cmake --build build-sanitize -j"$(nproc)"
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
-ctest --test-dir build-sanitize -j"$(nproc)" --output-on-failure -E '^consumer_package$'
+if [ "$#" -eq 0 ]; then
+  cmake --build build-sanitize -j"$(nproc)"
+  ctest --test-dir build-sanitize -j"$(nproc)" --output-on-failure -E '^consumer_package$'
+else
+  cmake --build build-sanitize -j"$(nproc)" --target "$@"
+  # each program's test cases are registered as '<program>:<test case>'
+  ctest --test-dir build-sanitize -j"$(nproc)" --output-on-failure -R "^($(IFS='|'; echo "$*")):"
+fi

@@ -2,6 +2,8 @@
 #ifndef SPRING_MOTION_INPUT_ERROR_H
 #define SPRING_MOTION_INPUT_ERROR_H
 
+#include <spring_motion/Error.h>
+
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -9,17 +11,18 @@
 
 namespace spring_motion {
 
-/// Bad user input: a mesh file that cannot be read, an output path that
+/// Bad user input (a spring_motion::Error, like every exception of the
+/// library and the command line): a mesh file that cannot be read, an output path that
 /// cannot be written, an unknown file extension.
 ///
 /// `what()` is one line, "FILE:LINE: message", so that editors and terminals
 /// can jump to the offending line; when no line applies (a missing file, an
 /// unknown extension) `line()` is 0 and `what()` is "FILE: message".
-class Input_error : public std::runtime_error
+class Input_error : public Error
 {
 public:
   Input_error(std::string file, std::size_t line, std::string message)
-    : std::runtime_error(format(file, line, message)),
+    : Error(format(file, line, message)),
       file_(std::move(file)),
       line_(line),
       message_(std::move(message))

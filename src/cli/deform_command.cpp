@@ -355,6 +355,8 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
     if(translation)
       return run_motion<D>(s, setup, std::move(roles), *translation, out, err, err_is_terminal);
     return run_motion<D>(s, setup, std::move(roles), *displacement, out, err, err_is_terminal);
+  } catch(const Input_error&) {
+    throw; // already names its file (an Input_error is an Error too)
   } catch(const Error& e) {
     // the library's own checks (a model's value, a non-finite position)
     throw Input_error(s.mesh_path, 0, without_source_location(e.what()));

@@ -217,7 +217,7 @@ private:
   // (which made min_size_ratio 0/0).
   double scaled_measure(const std::vector<Point>& x, std::size_t t) const
   {
-    auto p = internal::points_of(net_, x, t);
+    auto p = internal::element_points<D>(net_.elements, x, t);
     const int e = -std::ilogb(net_.longest_initial_edge);
     for(auto& q : p)
       for(auto& c : q)

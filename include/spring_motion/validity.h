@@ -4,6 +4,7 @@
 
 #include <spring_motion/Error.h>
 #include <spring_motion/Spring_network.h>
+#include <spring_motion/internal/element_points.h>
 #include <spring_motion/internal/threads.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -42,16 +43,6 @@ inline int exact_orientation(const std::array<std::array<double, 3>, 4>& p)
                                P(p[2][0], p[2][1], p[2][2]), P(p[3][0], p[3][1], p[3][2])));
 }
 
-template <int D>
-inline std::array<std::array<double, D>, D + 1> points_of(const Spring_network<D>& net,
-                                                          const std::vector<typename Spring_network<D>::Point>& x,
-                                                          std::size_t t)
-{
-  std::array<std::array<double, D>, D + 1> p;
-  for(int k = 0; k <= D; ++k)
-    p[k] = x[net.elements[t][k]];
-  return p;
-}
 
 } // namespace internal
 
@@ -65,7 +56,7 @@ Orientation_record record_orientations(const Spring_network<D>& net, const std::
   rec.sign.resize(net.number_of_elements());
   std::vector<std::size_t> degenerate;
   for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
-    const int o = internal::exact_orientation(internal::points_of(net, x, t));
+    const int o = internal::exact_orientation(internal::element_points<D>(net.elements, x, t));
     rec.sign[t] = static_cast<signed char>(o);
     if(o == 0)
       degenerate.push_back(t);
@@ -96,7 +87,7 @@ std::size_t find_inverted_elements(const Spring_network<D>& net, const std::vect
 #pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
   for(long t = 0; t < m; ++t)
     bad[std::size_t(t)] =
-        internal::exact_orientation(internal::points_of(net, x, std::size_t(t))) != rec.sign[std::size_t(t)];
+        internal::exact_orientation(internal::element_points<D>(net.elements, x, std::size_t(t))) != rec.sign[std::size_t(t)];
   std::size_t count = 0;
   for(long t = 0; t < m; ++t)
     if(bad[std::size_t(t)]) {

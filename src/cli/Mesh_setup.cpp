@@ -22,14 +22,6 @@ namespace {
 const char* element_plural(int dimension) { return dimension == 2 ? "triangles" : "tetrahedra"; }
 const char* facet_plural(int dimension) { return dimension == 2 ? "edges" : "triangles"; }
 
-template <int D>
-std::array<std::array<double, D>, D + 1> corners(const Indexed_mesh<D>& mesh, std::size_t t)
-{
-  std::array<std::array<double, D>, D + 1> p;
-  for(int k = 0; k <= D; ++k)
-    p[k] = mesh.points[mesh.elements[t][k]];
-  return p;
-}
 
 // "lines 14, 15, 20 and 3 more"
 std::string line_list(const std::vector<std::size_t>& elements, const std::vector<std::size_t>& lines)
@@ -87,7 +79,7 @@ Mesh_setup<D> make_mesh_setup(const std::string& path, const Mesh_file& file, bo
   // Exact orientation of every element.
   std::vector<int> sign(m);
   for(std::size_t t = 0; t < m; ++t) {
-    sign[t] = internal::exact_orientation(corners(mesh, t));
+    sign[t] = internal::exact_orientation(internal::element_points<D>(mesh.elements, mesh.points, t));
     if(sign[t] == 0)
       setup.problems.degenerate.push_back(t);
     else

@@ -88,7 +88,7 @@ int check(const std::string& path, const Mesh_file& file, std::ostream& out, std
       << boundary_vertices << " vertices (" << labelled_boundary_vertices << " on a labelled part)\n";
   double min_measure = std::numeric_limits<double>::infinity(), max_measure = 0;
   for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
-    const double v = std::abs(internal::signed_measure(internal::points_of(net, net.points, t)));
+    const double v = std::abs(internal::signed_measure(internal::element_points<D>(net.elements, net.points, t)));
     min_measure = std::min(min_measure, v);
     max_measure = std::max(max_measure, v);
   }

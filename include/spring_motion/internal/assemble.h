@@ -6,6 +6,7 @@
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/internal/threads.h>
 #include <spring_motion/internal/angles.h>
+#include <spring_motion/internal/element_points.h>
 #include <spring_motion/internal/linear_system.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
 
@@ -17,16 +18,6 @@
 namespace spring_motion {
 namespace internal {
 
-template <int D>
-inline std::array<std::array<double, D>, D + 1> element_points(const Spring_network<D>& net,
-                                                               const std::vector<typename Spring_network<D>::Point>& x,
-                                                               std::size_t t)
-{
-  std::array<std::array<double, D>, D + 1> p;
-  for(int k = 0; k <= D; ++k)
-    p[k] = x[net.elements[t][k]];
-  return p;
-}
 
 /// The element's angle at each of its local edges: facing angles of a
 /// triangle, dihedral angles of a tetrahedron.
@@ -62,7 +53,7 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
       angles.resize(std::size_t(m) * E);
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
       for(long t = 0; t < m; ++t) {
-        const auto a = element_edge_angles<D>(element_points(net, x, std::size_t(t)));
+        const auto a = element_edge_angles<D>(element_points<D>(net.elements, x, std::size_t(t)));
         for(int j = 0; j < E; ++j)
           angles[net.slot_position[std::size_t(t) * E + std::size_t(j)]] = a[std::size_t(j)];
       }
@@ -148,7 +139,7 @@ void assemble_system(const Spring_network<D>& net, const std::vector<typename Sp
     std::array<double, ND * ND> Ke;
     for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
       Ke.fill(0.0);
-      model.add_element_matrix(element_points(net, x, t), Ke.data());
+      model.add_element_matrix(element_points<D>(net.elements, x, t), Ke.data());
       const auto& el = net.elements[t];
       for(int a = 0; a <= D; ++a)
         for(int b = 0; b <= D; ++b) {

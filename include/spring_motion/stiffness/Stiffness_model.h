@@ -23,6 +23,20 @@ enum class Angle_kind
            ///< (2D: the same as `element`; 3D: Zeng and Ethier's choice)
 };
 
+/// How the edge springs of an element model act in its coupled (D x D block)
+/// system. Edge models alone always act per coordinate: their system is one
+/// scalar Laplacian for all D components.
+enum class Edge_spring_form
+{
+  /// k I: the edge pulls each coordinate separately (the classic lineal
+  /// springs of the torsional model). Not rotation invariant.
+  per_coordinate,
+  /// k e e^T / |e|^2 with e the edge vector: a truss along the edge, which
+  /// resists stretching only and is rotation invariant. What an edge model
+  /// combined with ball-vertex springs uses.
+  along_edge
+};
+
 /// What a model may need besides the edge itself: the dimension and the
 /// longest edge of the initial mesh (the paper's `l0`).
 struct Stiffness_context
@@ -51,6 +65,11 @@ struct Model_description
 /// void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, double* K) const;
 /// \endcode
 /// and couples the coordinate components: the solver then works on D x D blocks.
+/// An element model may also say how its edge springs act in that system
+/// (default `Edge_spring_form::per_coordinate`):
+/// \code
+/// Edge_spring_form edge_spring_form() const;
+/// \endcode
 /// Scaling every stiffness of a model by one constant does not change the motion.
 
 namespace internal {
@@ -126,6 +145,22 @@ struct Is_element_model<Model, D,
                         std::void_t<decltype(std::declval<const Model&>().add_element_matrix(
                             std::declval<const std::array<std::array<double, D>, D + 1>&>(),
                             std::declval<double*>()))>> : std::true_type {};
+
+template <class Model, class = void>
+struct Has_edge_spring_form : std::false_type {};
+template <class Model>
+struct Has_edge_spring_form<Model, std::void_t<decltype(std::declval<const Model&>().edge_spring_form())>>
+    : std::true_type {};
+
+/// How the edge springs of `model` act in a block system.
+template <class Model>
+Edge_spring_form edge_spring_form(const Model& model)
+{
+  if constexpr(Has_edge_spring_form<Model>::value)
+    return model.edge_spring_form();
+  else
+    return Edge_spring_form::per_coordinate;
+}
 
 template <class Model>
 Model_description describe_model(const Model& model, int dimension)

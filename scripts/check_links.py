@@ -8,8 +8,9 @@ examples/, fuzz/ and tests/. A link (inline `[text](target)`, image
 fails when its target file does not exist, lies outside the repository, or
 names a `#section` that is not a heading of the target Markdown file (GitHub's
 anchor rules). Web links (http, https, mailto) are not followed. Code blocks
-and code spans are skipped. Exits 1 listing every broken link as
-FILE:LINE: target: why."""
+and code spans are skipped. Sections of docs/method.md cited by name in
+source files and docs (`docs/method.md, "Solver"`) must be headings of it.
+Exits 1 listing every broken link as FILE:LINE: target: why."""
 import os
 import re
 import sys
@@ -97,6 +98,40 @@ def check_file(root, path):
     return errors
 
 
+SECTION_CITATION = re.compile(r"(?:docs/)?method\.md\W{0,4}\"([^\"]+)\"")
+CITING_EXTENSIONS = (".h", ".cpp", ".py", ".sh", ".txt", ".cmake", ".in", ".geo", ".md")
+
+
+def check_section_citations(root):
+    """Every `docs/method.md "Section"` in the tree names a heading of docs/method.md."""
+    method = os.path.join(root, "docs", "method.md")
+    if not os.path.exists(method):
+        return [f"docs/method.md: no such file"]
+    headings = set()
+    with open(method, encoding="utf-8") as f:
+        for line in strip_code(f.read().splitlines()):
+            m = HEADING.match(line)
+            if m:
+                headings.add(m.group(2).strip())
+    errors = []
+    for top in ("include", "src", "tests", "examples", "bench", "fuzz", "scripts", "data", "docs", "cmake"):
+        for dirpath, dirnames, filenames in os.walk(os.path.join(root, top)):
+            dirnames.sort()
+            for name in sorted(filenames):
+                if not name.endswith(CITING_EXTENSIONS):
+                    continue
+                path = os.path.join(dirpath, name)
+                if os.path.samefile(path, __file__):
+                    continue  # its own messages
+                with open(path, encoding="utf-8", errors="replace") as f:
+                    for number, line in enumerate(f, 1):
+                        for m in SECTION_CITATION.finditer(line):
+                            if m.group(1) not in headings:
+                                errors.append(f"{os.path.relpath(path, root)}:{number}: docs/method.md "
+                                              f"\"{m.group(1)}\": no such section")
+    return errors
+
+
 def default_files(root):
     files = [os.path.join(root, "README.md")]
     for top in ("docs", "data", "examples", "fuzz", "tests"):
@@ -112,6 +147,8 @@ def main(argv):
     errors = []
     for path in files:
         errors += check_file(root, path)
+    if len(argv) <= 2:
+        errors += check_section_citations(root)
     for e in errors:
         print(e)
     print(f"{len(files)} Markdown file(s), {len(errors)} broken link(s)")

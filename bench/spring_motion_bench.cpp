@@ -1,4 +1,4 @@
-// SpringMotion benchmark (issue 6): one table of where the time of a motion
+// SpringMotion benchmark (docs/performance.md): one table of where the time of a motion
 // goes, how the increment solver compares with Eigen's solvers on the very
 // same linear systems, how close one SOR sweep comes to the memory-traffic
 // bound, and 1 versus 2 threads; then the performance targets, each with
@@ -751,7 +751,7 @@ void print_targets(const std::vector<Row>& rows, bool quick)
       ts.push_back({"default solver vs Eigen CG+IC", ">= 2x faster", buf, worst >= 2, m});
     }
   }
-  std::printf("\nTargets (issue 6 point 4)%s:\n", quick ? " -- QUICK RUN, smaller cases: not the real check" : "");
+  std::printf("\nTargets%s:\n", quick ? " -- QUICK RUN, smaller cases: not the real check" : "");
   std::printf("%-58s %-14s %-44s %-5s %s\n", "target", "bound", "measured", "met?", "by how much");
   for(const auto& t : ts)
     std::printf("%-58s %-14s %-44s %-5s %s\n", t.what.c_str(), t.target.c_str(), t.measured.c_str(),

@@ -8,7 +8,7 @@ lc_airfoil = 0.02; // mesh size at the airfoil
 lc_far = 1.5;      // mesh size at the far field
 R = 10;
 
-// y_t(x) of METHOD.md section 6, with -0.1036 for a closed trailing edge
+// y_t(x) of docs/method.md ("Test cases"), with -0.1036 for a closed trailing edge
 Point(1) = {1, 0, 0, lc_airfoil};             // trailing edge
 For i In {1:N-1}
   x = 0.5 * (1 + Cos(Pi * i / N));            // from the trailing edge to the leading edge

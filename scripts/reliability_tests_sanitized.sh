@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The reliability tests (issue 7) alone under AddressSanitizer and
+# The reliability tests (docs/reliability.md) alone under AddressSanitizer and
 # UndefinedBehaviorSanitizer, in the sanitized build of scripts/test_sanitized.sh
 # (which, without arguments, runs the whole suite so).
 #

@@ -5,7 +5,8 @@
 #
 #   scripts/substepping_amplitudes.sh [BUILD_DIR] [K] [STEPS...]
 #
-# BUILD_DIR (default build-rel) must hold examples/naca0012_pitch_2d;
+# BUILD_DIR (relative to the repository root, default build: the folder the
+# README's commands make) must hold examples/naca0012_pitch_2d;
 # K defaults to 6 (64 substeps), STEPS to "100 10". Writes docs/reliability/:
 #   substepping_n<STEPS>_k<0|K>.txt    the program's full output
 #   substepping_n<STEPS>_k<0|K>.json   its max_amplitude report
@@ -14,7 +15,8 @@
 # Runs many solves (tens of minutes on a busy machine): use nice.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
-build="${1:-$here/build-rel}"
+cd "$here"
+build="${1:-build}"
 k="${2:-6}"
 shift $(( $# < 2 ? $# : 2 ))
 steps=("$@")

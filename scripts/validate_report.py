@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Validates SpringMotion JSON reports against the format of DESIGN.md
-section 3 ("spring_motion.report/1"). Usage: validate_report.py FILE...
+"""Validates SpringMotion JSON reports against the format of
+docs/report_format.md ("spring_motion.report/1"). Usage: validate_report.py FILE...
 Exits non-zero, naming the file and the field, on the first violation."""
 import json
 import math

@@ -1,6 +1,6 @@
 // Copyright (c) 2026 SpringMotion developers.
 //
-// The 3D test domains of METHOD.md section 6, meshed by CGAL Mesh_3. This is
+// The 3D test domains of docs/method.md ("Test cases"), meshed by CGAL Mesh_3. This is
 // the library's only Mesh_3 translation unit (Mesh_3 compiles slowly).
 //
 // How the wing domain is built, and why:
@@ -8,7 +8,7 @@
 // * Input surface: one Surface_mesh with two components, the wing and the
 //   sphere; the domain is the region between them (Mesh_3's inside test
 //   counts ray crossings). The wing is the NACA0012 section (closed trailing
-//   edge, METHOD.md section 6) with `section_intervals` cosine-spaced
+//   edge, docs/method.md) with `section_intervals` cosine-spaced
 //   intervals per surface, extruded over z in [-1, 1] in `span_intervals`
 //   strips, closed by flat tip caps (a fan from (0.4, 0): the section is
 //   convex). The sphere is an icosahedron subdivided `sphere_subdivisions`

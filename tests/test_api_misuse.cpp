@@ -1,4 +1,4 @@
-// API misuse (issue 7, point 6): every mistake a caller can make with the
+// API misuse: every mistake a caller can make with the
 // public API raises spring_motion::Error with a message that names the
 // problem, in release builds too (CGAL's own preconditions vanish there).
 #include <spring_motion/spring_motion.h>

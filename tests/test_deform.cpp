@@ -38,7 +38,7 @@ TEST_CASE("deform: a rigid translation of the whole boundary translates every ve
   const std::array<double, 2> d{0.3, -0.2};
   Deform_options options;
   options.number_of_steps = 5;
-  // the sweep criterion is not the error (DESIGN.md pitfall 7): ask for a
+  // the sweep criterion is not the error (docs/method.md, "Solver"): ask for a
   // criterion far below the round-off level we then check against
   options.solver.tolerance = 1e-16;
   const auto report = deform(cdt, All_boundary_moving{}, Translation_motion<2>{d}, Grid_scaled_stiffness{}, options);

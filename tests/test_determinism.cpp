@@ -1,4 +1,4 @@
-// Determinism (issue 7, point 5): the same input twice gives bitwise the same
+// Determinism: the same input twice gives bitwise the same
 // positions, the same report (timings aside) and the same written files.
 // (1 thread against N threads: tests/test_thread_determinism.cpp.)
 #include <spring_motion/io/network_output.h>

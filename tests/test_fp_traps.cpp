@@ -1,4 +1,4 @@
-// Floating point (issue 7, point 4): whole deform() runs of every stiffness
+// Floating point: whole deform() runs of every stiffness
 // model with the FE_INVALID, FE_DIVBYZERO and FE_OVERFLOW traps enabled
 // (glibc's feenableexcept), so the first NaN, division by zero or overflow
 // the library computes raises SIGFPE, which Catch2 reports as a failure at

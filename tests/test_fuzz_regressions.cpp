@@ -1,4 +1,4 @@
-// Fuzz regressions (issue 7, point 2): the inputs of tests/data/fuzz_regressions/
+// Fuzz regressions: the inputs of tests/data/fuzz_regressions/
 // replayed with the fuzz targets' property: a clean Input_error naming the
 // file and line, or a mesh whose indices are in range and that then builds a
 // spring network or makes it throw spring_motion::Error. Never a crash.

@@ -1,4 +1,4 @@
-// Equiangle skewness R (paper Eq. 13, METHOD.md section 5) and its histograms.
+// Equiangle skewness R (paper Eq. 13, docs/method.md "Validity and quality") and its histograms.
 #include <spring_motion/skewness.h>
 
 #include <catch2/catch.hpp>

@@ -1,5 +1,5 @@
 // Stiffness models (include/spring_motion/stiffness/): values on hand-computed
-// triangles (METHOD.md section 3), the torsional angle derivatives against
+// triangles (docs/method.md, "Stiffness models"), the torsional angle derivatives against
 // finite differences, the invariance of the motion under k -> c k, and user
 // models passed to deform().
 #include <spring_motion/spring_motion.h>

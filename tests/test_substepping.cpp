@@ -1,4 +1,4 @@
-// Adaptive substepping (issue 7, point 1): a step that inverts an element is
+// Adaptive substepping: a step that inverts an element is
 // retried from the last valid state as 2, 4, ... 2^K equal substeps.
 #include <spring_motion/spring_motion.h>
 

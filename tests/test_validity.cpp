@@ -1,4 +1,4 @@
-// Exact validity (validity.h, METHOD.md section 5) and deform()'s rollback:
+// Exact validity (validity.h, docs/method.md "Validity and quality") and deform()'s rollback:
 // the elements reported as inverted are exactly those whose CGAL::orientation,
 // computed here, differs from the initial one, and the mesh is left at the
 // last valid step.

@@ -16,7 +16,7 @@
 
 namespace spring_motion {
 
-/// One step of a motion (DESIGN.md section 3).
+/// One step of a motion (its JSON form: docs/report_format.md).
 struct Step_report
 {
   std::size_t step = 0;
@@ -73,7 +73,7 @@ struct Deform_report
 };
 
 /// Writes the report as one JSON object in the format "spring_motion.report/1"
-/// of DESIGN.md section 3. Non-finite numbers are written as null.
+/// of docs/report_format.md. Non-finite numbers are written as null.
 void write_report_json(const Deform_report& report, std::ostream& out);
 
 /// Writes the JSON report to `path` through a temporary file, renamed on

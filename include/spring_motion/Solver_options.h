@@ -7,7 +7,7 @@
 namespace spring_motion {
 
 /// How each step's increment is solved. Both methods have the same fixed
-/// point: the spring equilibrium of METHOD.md section 2.
+/// point: the spring equilibrium of docs/method.md ("Spring network").
 enum class Solver_method
 {
   /// conjugate gradients with the preconditioner of
@@ -63,7 +63,7 @@ enum class Stopping_rule
   max_update
 };
 
-/// Options of the increment solver (METHOD.md section 4).
+/// Options of the increment solver (docs/method.md, "Solver").
 struct Solver_options
 {
   Solver_method method = Solver_method::conjugate_gradient;

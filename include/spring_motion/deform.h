@@ -26,7 +26,7 @@
 
 namespace spring_motion {
 
-/// Options of a motion run. Defaults follow METHOD.md.
+/// Options of a motion run (docs/method.md, "Time stepping and substepping").
 struct Deform_options
 {
   /// n: the motion is applied in this many increments
@@ -366,7 +366,7 @@ private:
 };
 
 /// Moves the interior of `mesh` while the motion carries its moving vertices
-/// through `options.number_of_steps` increments (METHOD.md section 4), and
+/// through `options.number_of_steps` increments (docs/method.md), and
 /// writes the final positions (the last valid state if a step inverted an
 /// element) back into the mesh.
 ///

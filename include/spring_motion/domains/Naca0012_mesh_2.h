@@ -21,7 +21,7 @@ using Mesh_2_cdt = CGAL::Constrained_Delaunay_triangulation_2<Mesh_2_kernel, Mes
                                                               CGAL::Exact_predicates_tag>;
 
 /// Half thickness of the NACA0012 section with a closed (sharp) trailing edge,
-/// chord 1, x in [0,1] (METHOD.md section 6).
+/// chord 1, x in [0,1] (docs/method.md, "Test cases").
 double naca0012_half_thickness(double x);
 
 /// Parameters of the NACA0012-in-a-circle domain. Defaults reproduce the

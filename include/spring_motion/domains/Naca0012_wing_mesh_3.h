@@ -30,7 +30,7 @@ using Mesh_3_c3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Mesh_3_triangulation
 constexpr int body_patch = 1;
 constexpr int outer_patch = 2;
 
-/// Parameters of the NACA0012 wing in a sphere (METHOD.md section 6): chord
+/// Parameters of the NACA0012 wing in a sphere (docs/method.md, "Test cases"): chord
 /// 1 from x = 0 to 1, span 2 (z in [-1, 1]), flat tips, sharp trailing edge;
 /// sphere of radius `far_field_radius` centred at (0.5, 0, 0). Defaults give
 /// the paper's 57924 nodes and 308850 tetrahedra within 10%; why each default

@@ -21,7 +21,7 @@ namespace spring_motion {
 /// Positions, not increments: the motion is evaluated from the initial point
 /// at every step, so rounding never accumulates.
 
-/// What a motion is, for reports (DESIGN.md section 3).
+/// What a motion is, for reports (docs/report_format.md).
 struct Motion_description
 {
   std::string kind = "custom";

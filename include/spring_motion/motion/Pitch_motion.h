@@ -11,7 +11,7 @@
 namespace spring_motion {
 
 /// A rigid pitching rotation following the paper's quarter-sine schedule
-/// (METHOD.md section 6): at motion fraction t in [0, 1] (step i of n is
+/// (docs/method.md, "Test cases"): at motion fraction t in [0, 1] (step i of n is
 /// t = i/n) the angle is alpha(t) = alpha_0 + alpha_m sin(pi t / 2).
 ///
 /// The mesh is taken to be at alpha_0, so points turn by alpha(t) - alpha_0

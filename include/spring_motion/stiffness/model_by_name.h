@@ -14,7 +14,7 @@
 
 namespace spring_motion {
 
-/// The model names of the command line and the reports (DESIGN.md section 3),
+/// The model names of the command line and the reports (docs/report_format.md),
 /// plus `lineal_p2`: lineal springs with p = 2, the paper's Eq. 1 as printed.
 inline const std::vector<std::string>& model_names()
 {

@@ -82,14 +82,14 @@ struct Simplicial_mesh_traits<CGAL::Mesh_complex_3_in_triangulation_3<Tr, Corner
 
   std::array<double, 3> point(Vertex_handle v) const
   {
-    return internal::Triangulation_3_points<Tr>::get(c3t3_.triangulation().geom_traits(), v->point());
+    return internal::Triangulation_points<Tr, 3>::get(v->point());
   }
 
   void set_point(C3t3&, Vertex_handle v, const std::array<double, 3>& p) const
   {
     // After deform() the complex is a valid mesh of the moved domain but its
     // triangulation is in general no longer regular: do not refine it further.
-    v->set_point(internal::Triangulation_3_points<Tr>::moved(v->point(), p));
+    v->set_point(internal::Triangulation_points<Tr, 3>::moved(v->point(), p));
   }
 
 private:

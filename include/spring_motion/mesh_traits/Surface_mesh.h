@@ -83,6 +83,10 @@ struct Simplicial_mesh_traits<CGAL::Surface_mesh<P>>
     } else if(flat_z_) {
       mesh.point(v) = P(uv[0], uv[1], z_);
     } else {
+      // Mapping back from the plane's frame rounds: a vertex that did not
+      // move (a fixed one) keeps its point bitwise instead.
+      if(point(v) == uv)
+        return;
       std::array<double, 3> q;
       for(int c = 0; c < 3; ++c)
         q[c] = origin_[c] + uv[0] * e1_[c] + uv[1] * e2_[c];

@@ -2,6 +2,7 @@
 #ifndef SPRING_MOTION_MESH_TRAITS_TRIANGULATION_2_H
 #define SPRING_MOTION_MESH_TRAITS_TRIANGULATION_2_H
 
+#include <spring_motion/internal/triangulation_points.h>
 #include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
 
 #include <CGAL/Triangulation_2.h>
@@ -23,7 +24,8 @@ struct Has_is_in_domain<Face, std::void_t<decltype(std::declval<const Face&>().i
 } // namespace internal
 
 /// Any CGAL `Triangulation_2` and its derived classes (Delaunay, constrained,
-/// constrained Delaunay, `Constrained_triangulation_plus_2`). The elements are
+/// constrained Delaunay, `Constrained_triangulation_plus_2`, regular: a moved
+/// vertex keeps its weight). The elements are
 /// the finite faces; when the face type knows `is_in_domain()` (a Mesh_2 face
 /// base), only the faces in the domain count, so the holes of a Mesh_2 domain
 /// are holes of the spring network too.
@@ -57,16 +59,14 @@ struct Simplicial_mesh_traits<
     }
   }
 
-  std::array<double, 2> point(Vertex_handle v) const
-  {
-    return {CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y())};
-  }
+  std::array<double, 2> point(Vertex_handle v) const { return internal::Triangulation_points<Tr, 2>::get(v->point()); }
 
   void set_point(Tr&, Vertex_handle v, const std::array<double, 2>& p) const
   {
     // Moving points breaks the Delaunay property: after deform() the
     // triangulation is a valid simplicial mesh, not one to insert() into.
-    v->set_point(typename Tr::Point(p[0], p[1]));
+    // A regular triangulation's vertex keeps its weight.
+    v->set_point(internal::Triangulation_points<Tr, 2>::moved(v->point(), p));
   }
 
 private:

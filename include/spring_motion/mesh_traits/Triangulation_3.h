@@ -2,6 +2,7 @@
 #ifndef SPRING_MOTION_MESH_TRAITS_TRIANGULATION_3_H
 #define SPRING_MOTION_MESH_TRAITS_TRIANGULATION_3_H
 
+#include <spring_motion/internal/triangulation_points.h>
 #include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
 
 #include <CGAL/Triangulation_3.h>
@@ -13,32 +14,6 @@
 
 namespace spring_motion {
 namespace internal {
-
-/// The bare point of a triangulation vertex and how to replace it keeping
-/// the rest: a regular triangulation (Mesh_3's) stores weighted points, and a
-/// moved vertex keeps its weight.
-template <class Tr>
-struct Triangulation_3_points
-{
-  using Point = typename Tr::Point;
-  using Gt = typename Tr::Geom_traits;
-  using Bare_point = typename Gt::Point_3;
-  static constexpr bool weighted = !std::is_same_v<Point, Bare_point>;
-
-  static std::array<double, 3> get(const Gt& gt, const Point& p)
-  {
-    const Bare_point& q = gt.construct_point_3_object()(p);
-    return {CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())};
-  }
-  static Point moved(const Point& old, const std::array<double, 3>& p)
-  {
-    const Bare_point q(p[0], p[1], p[2]);
-    if constexpr(weighted)
-      return Point(q, old.weight());
-    else
-      return q;
-  }
-};
 
 // Derived from some CGAL::Triangulation_3 (the base's lock parameter is not
 // recoverable from the derived class's typedefs, so match by conversion).
@@ -79,14 +54,14 @@ struct Simplicial_mesh_traits<Tr, std::enable_if_t<internal::is_triangulation_3<
 
   std::array<double, 3> point(Vertex_handle v) const
   {
-    return internal::Triangulation_3_points<Tr>::get(tr_.geom_traits(), v->point());
+    return internal::Triangulation_points<Tr, 3>::get(v->point());
   }
 
   void set_point(Tr&, Vertex_handle v, const std::array<double, 3>& p) const
   {
     // Moving points breaks the Delaunay (regular) property: after deform()
     // the triangulation is a valid simplicial mesh, not one to insert() into.
-    v->set_point(internal::Triangulation_3_points<Tr>::moved(v->point(), p));
+    v->set_point(internal::Triangulation_points<Tr, 3>::moved(v->point(), p));
   }
 
 private:

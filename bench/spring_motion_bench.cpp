@@ -103,16 +103,41 @@ struct Partial_motion
   double scale = 1;
   template <class P>
   P operator()(const P& p, double t) const { return base(p, t * scale); }
-  sm::Motion_description description() const { return sm::internal::describe_motion(base); }
+  sm::Motion_description description() const { return base.description(); }
 };
 
+// A copy of one step's system as Network_deformer::system_observer shows it
+// (public Step_system_view), and our solution of it: the step's increment at
+// the free vertices, read from the positions before and after the step.
 template <int D>
 struct Captured_system
 {
-  sm::internal::Linear_system<D> sys;
-  std::vector<sm::Index> free;
-  std::vector<std::array<double, D>> x0;
+  bool block = false;
+  std::vector<sm::Index> vertices, offsets, columns;
+  std::vector<double> values, diagonal;
+  std::vector<std::array<double, D>> rhs, x0, solution;
+  std::vector<std::array<double, D>> before; // positions at the start of the step
   std::size_t step = 0;
+  double seconds = 0;         // our solve, from the step report (1 thread)
+  std::size_t iterations = 0; // ours
+
+  static Captured_system from(const sm::Step_system_view<D>& v, std::size_t step,
+                              const std::vector<std::array<double, D>>& positions)
+  {
+    Captured_system c;
+    const std::size_t w = v.block ? D * D : 1, nnz = v.row_offsets[v.rows];
+    c.block = v.block;
+    c.vertices.assign(v.vertices, v.vertices + v.rows);
+    c.offsets.assign(v.row_offsets, v.row_offsets + v.rows + 1);
+    c.columns.assign(v.columns, v.columns + nnz);
+    c.values.assign(v.values, v.values + nnz * w);
+    c.diagonal.assign(v.diagonal, v.diagonal + v.rows * w);
+    c.rhs.assign(v.rhs, v.rhs + v.rows);
+    c.x0.assign(v.initial, v.initial + v.rows);
+    c.before = positions;
+    c.step = step;
+    return c;
+  }
 };
 
 template <int D>
@@ -177,37 +202,58 @@ struct Eigen_system
   Eigen::MatrixXd b, x0;         // nf x D
 };
 
+// The system as one sparse matrix: nf x nf for a scalar system (the same for
+// every component), nf D x nf D for a block system (then b and x0 are one
+// column, component-major per row, reshaped to nf x D by the callers).
 template <int D>
-Eigen_system<D> to_eigen(const sm::Spring_network<D>& net, const Captured_system<D>& c)
+Eigen_system<D> to_eigen(const Captured_system<D>& c)
 {
-  SPRING_MOTION_CHECK(!c.sys.block, "the benchmark compares scalar (edge-model) systems only");
-  const std::size_t n = net.number_of_vertices();
-  std::vector<long> pos(n, -1);
-  for(std::size_t k = 0; k < c.free.size(); ++k)
-    pos[c.free[k]] = long(k);
-  const long nf = long(c.free.size());
+  const long nf = long(c.vertices.size());
+  const int w = c.block ? D : 1;
   Eigen_system<D> e;
   e.b = Eigen::MatrixXd::Zero(nf, D);
   e.x0 = Eigen::MatrixXd::Zero(nf, D);
   std::vector<Eigen::Triplet<double>> trip;
   for(long k = 0; k < nf; ++k) {
-    const sm::Index i = c.free[std::size_t(k)];
-    trip.emplace_back(k, k, c.sys.diagonal[i]);
-    for(int d = 0; d < D; ++d)
-      e.x0(k, d) = c.x0[i][d];
-    for(sm::Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p) {
-      const sm::Index j = net.adjacency[p];
-      const double w = c.sys.weight[p];
-      if(pos[j] >= 0)
-        trip.emplace_back(k, pos[j], -w);
-      else
-        for(int d = 0; d < D; ++d)
-          e.b(k, d) += w * c.x0[j][d];
+    for(int d = 0; d < D; ++d) {
+      e.x0(k, d) = c.x0[std::size_t(k)][d];
+      e.b(k, d) = c.rhs[std::size_t(k)][d];
     }
+    for(int r = 0; r < w; ++r)
+      for(int q = 0; q < w; ++q)
+        trip.emplace_back(k * w + r, k * w + q, c.diagonal[std::size_t((k * w + r) * w + q)]);
+    for(sm::Index p = c.offsets[std::size_t(k)]; p < c.offsets[std::size_t(k) + 1]; ++p)
+      for(int r = 0; r < w; ++r)
+        for(int q = 0; q < w; ++q)
+          trip.emplace_back(k * w + r, long(c.columns[p]) * w + q, c.values[(std::size_t(p) * w + r) * w + q]);
   }
-  e.A.resize(nf, nf);
+  e.A.resize(nf * w, nf * w);
   e.A.setFromTriplets(trip.begin(), trip.end());
   return e;
+}
+
+// Right-hand sides as Eigen wants them: nf x D (scalar) or one column (block).
+template <int D>
+Eigen::MatrixXd eigen_rhs(const Captured_system<D>& c, const Eigen::MatrixXd& m)
+{
+  if(!c.block)
+    return m;
+  Eigen::MatrixXd v(m.rows() * D, 1);
+  for(long k = 0; k < m.rows(); ++k)
+    for(int d = 0; d < D; ++d)
+      v(k * D + d, 0) = m(k, d);
+  return v;
+}
+template <int D>
+Eigen::MatrixXd from_eigen(const Captured_system<D>& c, const Eigen::MatrixXd& v)
+{
+  if(!c.block)
+    return v;
+  Eigen::MatrixXd m(v.rows() / D, D);
+  for(long k = 0; k < m.rows(); ++k)
+    for(int d = 0; d < D; ++d)
+      m(k, d) = v(k * D + d, 0);
+  return m;
 }
 
 template <int D>
@@ -217,12 +263,12 @@ double max_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b)
 }
 
 template <int D>
-Eigen::MatrixXd free_values(const Captured_system<D>& c, const std::vector<std::array<double, D>>& x)
+Eigen::MatrixXd as_matrix(const std::vector<std::array<double, D>>& x)
 {
-  Eigen::MatrixXd m(long(c.free.size()), D);
-  for(std::size_t k = 0; k < c.free.size(); ++k)
+  Eigen::MatrixXd m(long(x.size()), D);
+  for(std::size_t k = 0; k < x.size(); ++k)
     for(int d = 0; d < D; ++d)
-      m(long(k), d) = x[c.free[k]][d];
+      m(long(k), d) = x[k][d];
   return m;
 }
 
@@ -338,8 +384,71 @@ Case<3> box_case(std::size_t N, const Setup& setup)
 
 // ---- measurements ----------------------------------------------------------------------
 
+// Fills each captured system's solution (the step's increment at its free
+// vertices) and solve time once its step is done.
 template <int D>
-Run_stats run_case(const Case<D>& c, int threads, std::vector<Captured_system<D>>* capture)
+struct Capture_visitor
+{
+  const sm::Network_deformer<D>* deformer = nullptr;
+  std::vector<Captured_system<D>*> pending;
+  void on_start(const sm::Deform_report&) {}
+  void on_step(const sm::Step_report& s)
+  {
+    for(Captured_system<D>* c : pending)
+      if(c->step == s.step && c->solution.empty()) {
+        for(sm::Index v : c->vertices) {
+          std::array<double, D> d;
+          for(int k = 0; k < D; ++k)
+            d[k] = deformer->positions()[v][k] - c->before[v][k];
+          c->solution.push_back(d);
+        }
+        c->seconds = s.seconds_solve;
+        c->iterations = s.iterations;
+      }
+  }
+};
+
+// One run of the case's motion with these solver options and model; captures
+// the systems of c.capture_steps (or the last one, if the run stops before).
+template <int D, class Model = sm::Grid_scaled_stiffness>
+sm::Deform_report run_once(const Case<D>& c, const sm::Solver_options& solver, std::vector<Captured_system<D>>* capture,
+                           const Model& model = {}, std::size_t steps = 0)
+{
+  sm::Network_deformer<D> deformer(c.net, c.roles);
+  std::size_t call = 0;
+  std::optional<Captured_system<D>> latest; // if the run stops before a capture step
+  std::vector<Captured_system<D>> got;
+  got.reserve(c.capture_steps.size());
+  Capture_visitor<D> visitor;
+  visitor.deformer = &deformer;
+  if(capture)
+    deformer.system_observer = [&](const sm::Step_system_view<D>& v) {
+      ++call;
+      if(std::find(c.capture_steps.begin(), c.capture_steps.end(), call) != c.capture_steps.end()) {
+        got.push_back(Captured_system<D>::from(v, call, deformer.positions()));
+        visitor.pending.push_back(&got.back());
+      } else if(got.empty()) {
+        latest = Captured_system<D>::from(v, call, deformer.positions());
+        visitor.pending.assign(1, &*latest);
+      }
+    };
+  sm::Deform_options options;
+  options.number_of_steps = steps ? steps : c.steps;
+  options.solver = solver;
+  options.quality_every_step = false; // the exact validity check still runs every step
+  const Partial_motion<sm::Pitch_motion<D>> motion{c.motion, double(options.number_of_steps) / double(c.of_steps)};
+  const auto rep = deformer.run(motion, model, options, visitor);
+  if(capture) {
+    if(got.empty() && latest)
+      got.push_back(std::move(*latest));
+    for(auto& g : got)
+      capture->push_back(std::move(g));
+  }
+  return rep;
+}
+
+template <int D, class Model = sm::Grid_scaled_stiffness>
+Run_stats run_case(const Case<D>& c, int threads, std::vector<Captured_system<D>>* capture, const Model& model = {})
 {
   Run_stats st;
   st.threads = threads;
@@ -347,28 +456,11 @@ Run_stats run_case(const Case<D>& c, int threads, std::vector<Captured_system<D>
   double iterations = 0;
   std::size_t counted = 0;
   for(int r = 0; r < c.repeats; ++r) {
-    sm::Network_deformer<D> deformer(c.net, c.roles);
-    std::size_t call = 0;
-    std::optional<Captured_system<D>> latest; // if the run stops before a capture step
-    if(capture && r == 0)
-      deformer.system_observer = [&](const sm::internal::Linear_system<D>& sys, const std::vector<sm::Index>& free,
-                                     const std::vector<std::array<double, D>>& x0) {
-        ++call;
-        if(std::find(c.capture_steps.begin(), c.capture_steps.end(), call) != c.capture_steps.end())
-          capture->push_back({sys, free, x0, call});
-        else if(capture->empty())
-          latest = Captured_system<D>{sys, free, x0, call};
-      };
-    sm::Deform_options options;
-    options.number_of_steps = c.steps;
-    options.solver.threads = threads;
-    options.quality_every_step = false; // the exact validity check still runs every step
-    const Partial_motion<sm::Pitch_motion<D>> motion{c.motion, double(c.steps) / double(c.of_steps)};
-    const auto rep = deformer.run(motion, sm::Grid_scaled_stiffness{}, options);
+    sm::Solver_options solver;
+    solver.threads = threads;
+    const auto rep = run_once(c, solver, r == 0 ? capture : nullptr, model);
     st.completed = rep.completed;
     st.steps_run = rep.steps.size();
-    if(capture && r == 0 && capture->empty() && latest)
-      capture->push_back(std::move(*latest));
     if(!rep.completed && rep.first_invalid)
       progress(c.name + ": step " + std::to_string(rep.first_invalid->step) + " inverted " +
                std::to_string(rep.first_invalid->elements.size()) + " element(s)");
@@ -392,56 +484,58 @@ Run_stats run_case(const Case<D>& c, int threads, std::vector<Captured_system<D>
   return st;
 }
 
-// Our default solver, Eigen's CG + incomplete Cholesky and SimplicialLDLT on the
-// captured systems, all from the run's initial iterate. Our time is the median of
-// `repeats` solves; Eigen's CG tolerance is tightened by 10x until its error is
-// at most ours ("equal error").
+// The reference solution of a captured system: SimplicialLDLT, or for the
+// largest case Eigen's CG + incomplete Cholesky to a relative residual of 1e-14.
 template <int D>
-Compare_stats compare_solvers(const Case<D>& c, const std::vector<Captured_system<D>>& caps, int repeats)
+Eigen::MatrixXd reference_solution(const Captured_system<D>& cap, const Eigen_system<D>& e, bool direct,
+                                   double* seconds = nullptr)
+{
+  const auto t0 = Clock::now();
+  Eigen::MatrixXd x;
+  if(direct) {
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(e.A);
+    SPRING_MOTION_CHECK(ldlt.info() == Eigen::Success, "LDLT failed");
+    x = from_eigen<D>(cap, ldlt.solve(eigen_rhs<D>(cap, e.b)));
+  } else {
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                             Eigen::IncompleteCholesky<double>>
+        cg;
+    cg.setTolerance(1e-14);
+    cg.setMaxIterations(100000);
+    cg.compute(e.A);
+    const Eigen::MatrixXd b = eigen_rhs<D>(cap, e.b), x0 = eigen_rhs<D>(cap, e.x0);
+    Eigen::MatrixXd v(b.rows(), b.cols());
+    for(long d = 0; d < b.cols(); ++d)
+      v.col(d) = cg.solveWithGuess(b.col(d), x0.col(d));
+    x = from_eigen<D>(cap, v);
+  }
+  if(seconds)
+    *seconds += seconds_since(t0);
+  return x;
+}
+
+// Our default solver (the captured step's own solve in the 1-thread run:
+// its solution and time), Eigen's CG + incomplete Cholesky and SimplicialLDLT
+// on the captured systems, all from the run's initial iterate. Eigen's CG
+// tolerance is tightened by 10x until its error is at most ours ("equal
+// error").
+template <int D>
+Compare_stats compare_solvers(const Case<D>& c, const std::vector<Captured_system<D>>& caps)
 {
   Compare_stats out;
   out.ldlt = c.direct_reference;
-  out.reference = c.direct_reference ? "LDLT" : "CG 1e-13";
-  sm::internal::Free_system<D> fs; // the ordering is built once per mesh, as in a run
-  if(!caps.empty())
-    fs.build(c.net, caps.front().free);
+  out.reference = c.direct_reference ? "LDLT" : "CG 1e-14";
   for(const auto& cap : caps) {
     progress(c.name + ": solver comparison on the system of step " + std::to_string(cap.step));
-    const auto e = to_eigen<D>(c.net, cap);
-    Eigen::MatrixXd reference;
-    if(c.direct_reference) {
-      const auto t0 = Clock::now();
-      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(e.A);
-      SPRING_MOTION_CHECK(ldlt.info() == Eigen::Success, "LDLT failed");
-      reference = ldlt.solve(e.b);
-      out.ldlt_seconds += seconds_since(t0);
-    } else {
-      auto x = cap.x0;
-      sm::Solver_options o;
-      o.tolerance = 1e-13;
-      o.threads = 0;
-      sm::internal::solve(c.net, cap.sys, cap.free, x, o, fs);
-      reference = free_values<D>(cap, x);
-    }
-    std::vector<double> ts;
-    Eigen::MatrixXd ours;
-    for(int r = 0; r < repeats; ++r) {
-      auto x = cap.x0;
-      sm::Solver_options o;
-      o.threads = 1;
-      const auto t0 = Clock::now();
-      sm::internal::solve(c.net, cap.sys, cap.free, x, o, fs);
-      ts.push_back(seconds_since(t0));
-      if(r == 0)
-        ours = free_values<D>(cap, x);
-    }
-    const double t_ours = median(ts);
-    const double err = max_difference<D>(ours, reference);
-    out.ours_seconds += t_ours;
+    const auto e = to_eigen<D>(cap);
+    const Eigen::MatrixXd reference = reference_solution<D>(cap, e, c.direct_reference, &out.ldlt_seconds);
+    const double err = max_difference<D>(as_matrix<D>(cap.solution), reference);
+    out.ours_seconds += cap.seconds;
     out.error = std::max(out.error, err);
     // Eigen CG + IC at equal error
     bool reached = false;
     double t_ic = 0, e_ic = 0, tol = 1e-4;
+    const Eigen::MatrixXd b = eigen_rhs<D>(cap, e.b), x0 = eigen_rhs<D>(cap, e.x0);
     for(; tol >= 1e-15; tol /= 10) {
       const auto t0 = Clock::now();
       Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
@@ -450,11 +544,11 @@ Compare_stats compare_solvers(const Case<D>& c, const std::vector<Captured_syste
       cg.setTolerance(tol);
       cg.setMaxIterations(100000);
       cg.compute(e.A);
-      Eigen::MatrixXd x(e.b.rows(), D);
-      for(int d = 0; d < D; ++d)
-        x.col(d) = cg.solveWithGuess(e.b.col(d), e.x0.col(d));
+      Eigen::MatrixXd x(b.rows(), b.cols());
+      for(long d = 0; d < b.cols(); ++d)
+        x.col(d) = cg.solveWithGuess(b.col(d), x0.col(d));
       t_ic = seconds_since(t0);
-      e_ic = max_difference<D>(x, reference);
+      e_ic = max_difference<D>(from_eigen<D>(cap, x), reference);
       if(e_ic <= err) {
         reached = true;
         break;
@@ -470,28 +564,29 @@ Compare_stats compare_solvers(const Case<D>& c, const std::vector<Captured_syste
   return out;
 }
 
-// One multicolour SOR sweep over the free vertices (median of several), and the
-// bytes it must move at least (Free_system::bytes_per_sweep: pattern and values
-// once, right-hand side and inverse diagonal once, solution read and written).
+// One SOR sweep in the solver's order: a one-step run whose solve is SOR
+// capped at `reps` sweeps (tolerance out of reach), its solve time over the
+// sweeps; the solve's own overhead (start, final residual) is about one
+// sweep, spread over the reps. The bytes a scalar sweep must move at least:
+// pattern and values once, right-hand side and inverse diagonal once,
+// solution read and written.
 template <int D>
 Sweep_stats time_sweep(const Case<D>& c, const Captured_system<D>& cap, int threads, double bandwidth)
 {
   Sweep_stats s;
-  sm::internal::Free_system<D> fs;
-  fs.build(c.net, cap.free);
-  progress(c.name + ": ordering " + std::to_string(fs.blocks()) + " blocks of ~" +
-           std::to_string(fs.rows() / std::max<std::size_t>(1, fs.blocks())) + " rows in " +
-           std::to_string(fs.colours()) + " colours");
-  fs.load(cap.sys, cap.x0, threads);
-  std::vector<double> ts;
   const int reps = c.net.number_of_vertices() > 200000 ? 7 : 31;
-  for(int r = 0; r < reps; ++r) {
-    const auto t0 = Clock::now();
-    fs.sor_sweep(1.0, threads);
-    ts.push_back(seconds_since(t0));
-  }
-  s.seconds = median(ts);
-  s.bytes = fs.bytes_per_sweep();
+  sm::Solver_options o;
+  o.method = sm::Solver_method::sor;
+  o.relaxation_factor = 1.0;
+  o.tolerance = 1e-300;
+  o.max_iterations = std::size_t(reps);
+  o.threads = threads;
+  const auto rep = run_once<D>(c, o, nullptr, sm::Grid_scaled_stiffness{}, 1);
+  SPRING_MOTION_CHECK(!rep.steps.empty() && rep.steps[0].iterations == std::size_t(reps), "the sweep run did not sweep");
+  s.seconds = rep.steps[0].seconds_solve / double(reps);
+  const double nf = double(cap.vertices.size()), nnz = double(cap.columns.size());
+  s.bytes = nnz * (sizeof(sm::Index) + sizeof(double)) +
+            nf * (sizeof(sm::Index) + sizeof(double) + D * sizeof(double) + 2.0 * D * sizeof(double));
   s.bound = s.bytes / bandwidth;
   return s;
 }
@@ -511,7 +606,7 @@ Row measure(const Case<D>& c, const std::vector<double>& bandwidth)
   for(int threads : {1, 2})
     row.runs.push_back(run_case(c, threads, threads == 1 ? &caps : nullptr));
   SPRING_MOTION_CHECK(!caps.empty(), "the run stopped (inverted element) before the step whose system is compared");
-  row.cmp = compare_solvers(c, caps, c.net.number_of_vertices() > 200000 ? 1 : 7);
+  row.cmp = compare_solvers(c, caps);
   progress(c.name + ": SOR sweep timing");
   for(int threads : {1, 2})
     row.sweeps.push_back(time_sweep(c, caps.back(), threads, bandwidth[std::size_t(threads - 1)]));
@@ -520,92 +615,69 @@ Row measure(const Case<D>& c, const std::vector<double>& bandwidth)
 
 // ---- relaxation factor ------------------------------------------------------------------
 
-// For the captured systems of a case: SOR sweeps (multicolour order) until the
-// true error is at most 1e-6, and conjugate gradients with a symmetric-SOR(omega)
-// preconditioner (default stopping rule): iterations, time, true error.
+// The solver's parameters on the first three steps of a case's motion (one
+// thread): SOR (error-estimate rule, tolerance 1e-6) and conjugate gradients
+// with a symmetric-SOR(omega) preconditioner against the relaxation factor,
+// then the multigrid's strength and correction factor about their defaults:
+// iterations and solve time summed over the steps, and the largest true
+// error of a step's solve against SimplicialLDLT on its captured system.
 template <int D>
 void omega_table(const Case<D>& c)
 {
-  std::vector<Captured_system<D>> caps;
-  Case<D> one = c;
-  one.repeats = 1;
-  run_case(one, 1, &caps);
-  std::vector<Eigen::MatrixXd> refs;
-  for(const auto& cap : caps) {
-    const auto e = to_eigen<D>(c.net, cap);
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(e.A);
-    refs.push_back(ldlt.solve(e.b));
-  }
-  sm::internal::Free_system<D> fs;
-  fs.build(c.net, caps.front().free);
-  std::printf("\n%s: relaxation factor, summed over the systems of steps", c.name.c_str());
-  for(const auto& cap : caps)
-    std::printf(" %zu", cap.step);
-  std::printf(" (1 thread)\n%6s %14s %12s %12s %12s\n", "omega", "SOR sweeps", "CG iters", "CG ms", "CG max err");
+  Case<D> first = c;
+  first.of_steps = c.of_steps * 3 / c.steps; // the schedule's first three steps...
+  first.steps = 3;
+  first.capture_steps = {1, 2, 3};
+  auto row = [&](const sm::Solver_options& o, std::size_t& iters, double& ms, double& err) {
+    std::vector<Captured_system<D>> caps;
+    run_once(first, o, &caps);
+    iters = 0;
+    ms = 0;
+    err = 0;
+    for(const auto& cap : caps) {
+      iters += cap.iterations;
+      ms += 1e3 * cap.seconds;
+      const auto e = to_eigen<D>(cap);
+      err = std::max(err, max_difference<D>(as_matrix<D>(cap.solution), reference_solution<D>(cap, e, true)));
+    }
+  };
+  std::printf("\n%s: relaxation factor, summed over the systems of steps 1-3 of %zu (1 thread)\n%6s %12s %12s %12s "
+              "%12s %12s\n",
+              c.name.c_str(), c.steps, "omega", "SOR sweeps", "SOR max err", "CG iters", "CG ms", "CG max err");
   for(double omega : {1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.7, 1.8, 1.85, 1.9, 1.95, 1.98}) {
     progress(c.name + ": omega " + std::to_string(omega));
+    sm::Solver_options sor;
+    sor.threads = 1;
+    sor.method = sm::Solver_method::sor;
+    sor.relaxation_factor = omega;
+    sor.max_iterations = 20000;
     std::size_t sweeps = 0, iters = 0;
-    bool sor_ok = true;
-    double ms = 0, err = 0;
-    for(std::size_t k = 0; k < caps.size(); ++k) {
-      const auto& cap = caps[k];
-      fs.load(cap.sys, cap.x0, 1);
-      std::size_t n = 0;
-      auto x = cap.x0;
-      for(;; ++n) {
-        fs.store(x);
-        if(max_difference<D>(free_values<D>(cap, x), refs[k]) <= 1e-6)
-          break;
-        if(n == 20000) {
-          sor_ok = false;
-          break;
-        }
-        fs.sor_sweep(omega, 1);
-      }
-      sweeps += n;
-      x = cap.x0;
-      sm::Solver_options o;
-      o.threads = 1;
-      o.preconditioner_relaxation_factor = omega;
-      const auto t0 = Clock::now();
-      const auto r = sm::internal::solve(c.net, cap.sys, cap.free, x, o, fs);
-      ms += 1e3 * seconds_since(t0);
-      iters += r.iterations;
-      err = std::max(err, max_difference<D>(free_values<D>(cap, x), refs[k]));
-    }
-    std::printf("%6.2f %13zu%s %12zu %12.2f %12.2e\n", omega, sweeps, sor_ok ? " " : "+", iters, ms, err);
+    double sor_ms = 0, sor_err = 0, ms = 0, err = 0;
+    row(sor, sweeps, sor_ms, sor_err);
+    sm::Solver_options cg;
+    cg.threads = 1;
+    cg.preconditioner_relaxation_factor = omega;
+    row(cg, iters, ms, err);
+    std::printf("%6.2f %12zu %12.2e %12zu %12.2f %12.2e\n", omega, sweeps, sor_err, iters, ms, err);
   }
-  // The multigrid preconditioner's two parameters: the strength threshold of
-  // the aggregation and the coarse-correction factor, each varied about the
-  // default with the other at its default.
-  std::printf("\n%s: multigrid preconditioner (default solver otherwise), same systems, 1 thread\n%9s %11s %8s %12s "
+  std::printf("\n%s: multigrid preconditioner (default solver otherwise), same steps, 1 thread\n%9s %11s %12s "
               "%10s %12s\n",
-              c.name.c_str(), "strength", "correction", "levels", "CG iters", "CG ms", "CG max err");
-  const sm::internal::Aggregation_multigrid<D> defaults;
+              c.name.c_str(), "strength", "correction", "CG iters", "CG ms", "CG max err");
+  const sm::Solver_options defaults;
   auto multigrid_row = [&](double strength, double correction) {
-    sm::internal::Free_system<D> f; // aggregates chosen afresh for this strength
-    f.build(c.net, caps.front().free);
-    f.multigrid().strength = strength;
-    f.multigrid().correction = correction;
+    sm::Solver_options o;
+    o.threads = 1;
+    o.multigrid_strength = strength;
+    o.multigrid_correction = correction;
     std::size_t iters = 0;
     double ms = 0, err = 0;
-    for(std::size_t k = 0; k < caps.size(); ++k) {
-      auto x = caps[k].x0;
-      sm::Solver_options o;
-      o.threads = 1;
-      const auto t0 = Clock::now();
-      const auto r = sm::internal::solve(c.net, caps[k].sys, caps[k].free, x, o, f);
-      ms += 1e3 * seconds_since(t0);
-      iters += r.iterations;
-      err = std::max(err, max_difference<D>(free_values<D>(caps[k], x), refs[k]));
-    }
-    std::printf("%9.2f %11.2f %8zu %12zu %10.2f %12.2e\n", strength, correction, f.multigrid().number_of_levels(),
-                iters, ms, err);
+    row(o, iters, ms, err);
+    std::printf("%9.2f %11.2f %12zu %10.2f %12.2e\n", strength, correction, iters, ms, err);
   };
   for(double strength : {0.0, 0.02, 0.04, 0.08, 0.12, 0.16, 0.25})
-    multigrid_row(strength, defaults.correction);
+    multigrid_row(strength, defaults.multigrid_correction);
   for(double correction : {1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6, 1.8})
-    multigrid_row(defaults.strength, correction);
+    multigrid_row(defaults.multigrid_strength, correction);
 }
 
 // ---- output ----------------------------------------------------------------------------
@@ -646,6 +718,64 @@ void print_table(const std::vector<Row>& rows)
                   k == 0 ? 1.0 : r.runs[0].total / s.total, s.completed ? "" : " (not completed)");
     }
   }
+}
+
+// Block (element-model) against scalar (edge-model) systems on one mesh, one
+// thread: the 2D torsional model and the grid-scaled model through the same
+// solver (ordering, block Gauss-Seidel, multigrid on D x D blocks).
+struct Block_row
+{
+  std::string model;
+  std::size_t steps = 0;
+  double iterations = 0;    // per step, mean
+  double solve_ms = 0;      // per step, median
+  double stiffness_ms = 0;  // per step, median (assembly included)
+  double ms_per_iteration = 0;
+  double error = 0;         // max |ours - LDLT| on the captured systems
+};
+
+template <class Model>
+Block_row block_row(const Case<2>& c, const std::string& name, const Model& model)
+{
+  progress(c.name + ": " + name + " (1 thread)");
+  Block_row b;
+  b.model = name;
+  std::vector<Captured_system<2>> caps;
+  sm::Solver_options o;
+  o.threads = 1;
+  const auto rep = run_once(c, o, &caps, model);
+  std::vector<double> solve, stiff;
+  std::size_t its = 0;
+  for(const auto& s : rep.steps) {
+    solve.push_back(s.seconds_solve);
+    stiff.push_back(s.seconds_stiffness);
+    its += s.iterations;
+  }
+  b.steps = rep.steps.size();
+  b.iterations = double(its) / double(std::max<std::size_t>(1, b.steps));
+  b.solve_ms = 1e3 * median(solve);
+  b.stiffness_ms = 1e3 * median(stiff);
+  double total_solve = 0;
+  for(double t : solve)
+    total_solve += t;
+  b.ms_per_iteration = 1e3 * total_solve / double(std::max<std::size_t>(1, its));
+  for(const auto& cap : caps)
+    b.error = std::max(b.error, max_difference<2>(as_matrix<2>(cap.solution),
+                                                  reference_solution<2>(cap, to_eigen<2>(cap), true)));
+  return b;
+}
+
+void print_block_rows(const std::string& mesh, const std::vector<Block_row>& rows)
+{
+  std::printf("\nBlock vs scalar systems, %s, 1 thread, default solver (err: max |ours - LDLT| on the captured "
+              "systems):\n%-28s %6s %8s %10s %10s %12s %9s\n",
+              mesh.c_str(), "model", "steps", "it/step", "solve ms", "stiff ms", "ms/iteration", "err");
+  for(const auto& r : rows)
+    std::printf("%-28s %6zu %8.1f %10.3f %10.3f %12.4f %9.2e\n", r.model.c_str(), r.steps, r.iterations, r.solve_ms,
+                r.stiffness_ms, r.ms_per_iteration, r.error);
+  if(rows.size() == 2)
+    std::printf("block / scalar: %.2fx the iterations per step, %.2fx the time per iteration\n",
+                rows[1].iterations / rows[0].iterations, rows[1].ms_per_iteration / rows[0].ms_per_iteration);
 }
 
 struct Target
@@ -819,9 +949,13 @@ int main(int argc, char** argv)
     return 0;
   }
   std::vector<Row> rows;
+  std::vector<Block_row> block_rows;
   if(wanted(setup, "naca_coarse")) {
     progress("building the coarse NACA0012 mesh");
-    rows.push_back(measure(naca_case(false, setup), bandwidth));
+    const auto c = naca_case(false, setup);
+    rows.push_back(measure(c, bandwidth));
+    block_rows.push_back(block_row(c, "grid-scaled (scalar)", sm::Grid_scaled_stiffness{}));
+    block_rows.push_back(block_row(c, "torsional (2x2 blocks)", sm::Torsional_stiffness{}));
   }
   if(wanted(setup, "naca_fine")) {
     progress("building the fine NACA0012 mesh");
@@ -860,6 +994,8 @@ int main(int argc, char** argv)
     }
   }
   print_table(rows);
+  if(!block_rows.empty())
+    print_block_rows("NACA0012 2D coarse (the paper's mesh)", block_rows);
   print_targets(rows, setup.quick);
   return 0;
 }

@@ -266,3 +266,153 @@ TEST_CASE("deform: the reports give the smallest and largest area ratio", "[defo
   write_report_json(report, json);
   CHECK_THAT(json.str(), Catch::Contains("\"max_size_ratio\": 1.4"));
 }
+
+namespace {
+// A pitch that counts its evaluations.
+struct Counting_motion
+{
+  Pitch_motion<2> pitch;
+  std::size_t* calls;
+  std::array<double, 2> operator()(const std::array<double, 2>& p, double t) const
+  {
+    ++*calls;
+    return pitch(p, t);
+  }
+};
+} // namespace
+
+TEST_CASE("deform: the motion is evaluated once per moving vertex and attempt", "[deform]")
+{
+  CDT cdt;
+  make_annulus(cdt);
+  const auto net = extract_spring_network(cdt).network;
+  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
+                                    return std::hypot(p[0], p[1]) < 1.0;
+                                  }));
+  std::size_t calls = 0;
+  Network_deformer<2> d(net, roles);
+  Deform_options options;
+  options.number_of_steps = 4;
+  const auto r = d.run(Counting_motion{Pitch_motion<2>(10, {0, 0}), &calls}, Grid_scaled_stiffness{}, options);
+  REQUIRE(r.completed);
+  CHECK(calls == options.number_of_steps * d.number_of_moving_vertices());
+}
+
+TEST_CASE("deform: a second run with other solver options rebuilds the solver state", "[deform][solver]")
+{
+  CDT cdt;
+  make_square_with_hole(cdt);
+  const auto net = extract_spring_network(cdt).network;
+  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
+                                    return std::max(std::abs(p[0]), std::abs(p[1])) < 1.0;
+                                  }));
+  const Pitch_motion<2> motion(20, {0, 0});
+  Deform_options first, second;
+  first.number_of_steps = second.number_of_steps = 5;
+  first.solver.ordering = Vertex_ordering::multicolour;
+  // another ordering, and for the block system the same ordering with other
+  // multigrid aggregates: each must give what a fresh deformer gives
+  const int variant = GENERATE(0, 1, 2);
+  if(variant == 0)
+    second.solver.ordering = Vertex_ordering::natural;
+  else if(variant == 1)
+    second.solver.block_rows = 32;
+  else {
+    second.solver.ordering = Vertex_ordering::multicolour;
+    second.solver.multigrid_strength = 0.2;
+  }
+  auto check = [&](const auto& model) {
+    Network_deformer<2> reused(net, roles);
+    REQUIRE(reused.run(motion, model, first).completed);
+    reused.reset();
+    CHECK(reused.fraction() == 0.0);
+    const auto a = reused.run(motion, model, second);
+    Network_deformer<2> fresh(net, roles);
+    const auto b = fresh.run(motion, model, second);
+    REQUIRE(a.completed);
+    REQUIRE(b.completed);
+    for(std::size_t i = 0; i < a.steps.size(); ++i)
+      CHECK(a.steps[i].iterations == b.steps[i].iterations);
+    CHECK(reused.positions() == fresh.positions()); // bit for bit
+  };
+  SECTION("scalar system") { check(Grid_scaled_stiffness{}); }
+  SECTION("block system") { check(Torsional_stiffness{}); }
+}
+
+TEST_CASE("deform: move() step by step reproduces run() with the same schedule", "[deform][move]")
+{
+  CDT cdt;
+  make_annulus(cdt);
+  const auto net = extract_spring_network(cdt).network;
+  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
+                                    return std::hypot(p[0], p[1]) < 1.0;
+                                  }));
+  const Pitch_motion<2> pitch(30, {0.1, 0});
+  Deform_options options;
+  options.number_of_steps = 6;
+  options.solver.tolerance = 1e-9;
+  Network_deformer<2> whole(net, roles);
+  const auto report = whole.run(pitch, Grid_scaled_stiffness{}, options);
+  REQUIRE(report.completed);
+
+  Network_deformer<2> stepped(net, roles);
+  const auto& moving = stepped.moving_vertices();
+  REQUIRE(moving.size() == stepped.number_of_moving_vertices());
+  const std::vector<std::array<double, 2>>* positions = &stepped.positions();
+  for(std::size_t i = 1; i <= options.number_of_steps; ++i) {
+    const double t = double(i) / double(options.number_of_steps);
+    std::vector<std::array<double, 2>> displacement;
+    for(Index v : moving) {
+      const auto q = pitch(net.points[v], t);
+      displacement.push_back({q[0] - net.points[v][0], q[1] - net.points[v][1]});
+    }
+    const Step_report s = stepped.move(displacement, Grid_scaled_stiffness{}, options);
+    CHECK(s.inverted == 0);
+    CHECK(s.converged);
+    CHECK(s.step == i);
+    CHECK(s.max_skewness_all == Approx(report.steps[i - 1].max_skewness_all).epsilon(1e-6));
+  }
+  CHECK(&stepped.positions() == positions); // read in place, no copy
+  // each step's solve ends within about tol of the same solution; the
+  // differences carry into the next step's stiffness and add up over the
+  // steps (as in test_solver.cpp), a factor 10 because the error is an estimate
+  double diff = 0;
+  for(std::size_t v = 0; v < net.number_of_vertices(); ++v)
+    for(int c = 0; c < 2; ++c)
+      diff = std::max(diff, std::abs(stepped.positions()[v][c] - whole.positions()[v][c]));
+  CHECK(diff <= 10 * 2 * double(options.number_of_steps) * options.solver.tolerance);
+}
+
+TEST_CASE("deform: an invalid move() is rolled back and reported", "[deform][move]")
+{
+  CDT cdt;
+  make_annulus(cdt);
+  const auto net = extract_spring_network(cdt).network;
+  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
+                                    return std::hypot(p[0], p[1]) < 1.0;
+                                  }));
+  Network_deformer<2> d(net, roles);
+  auto displacement = [&](double degrees) {
+    const Pitch_motion<2> turn(degrees, {0, 0});
+    std::vector<std::array<double, 2>> out;
+    for(Index v : d.moving_vertices()) {
+      const auto q = turn(net.points[v], 1.0);
+      out.push_back({q[0] - net.points[v][0], q[1] - net.points[v][1]});
+    }
+    return out;
+  };
+  const Step_report first = d.move(displacement(5), Grid_scaled_stiffness{});
+  REQUIRE(first.inverted == 0);
+  const auto valid = d.positions();
+  // 60 degrees in one increment inverts elements (test_substepping.cpp)
+  const Step_report bad = d.move(displacement(60), Grid_scaled_stiffness{});
+  CHECK(bad.inverted > 0);
+  CHECK(bad.inverted == d.last_inverted_elements().size());
+  CHECK(d.positions() == valid); // bit for bit the last valid state
+  CHECK(d.fraction() == 1.0);    // one accepted move
+  // and the deformer goes on from there
+  const Step_report next = d.move(displacement(8), Grid_scaled_stiffness{});
+  CHECK(next.inverted == 0);
+  CHECK(d.last_inverted_elements().empty());
+  CHECK(d.fraction() == 2.0);
+}

@@ -1,5 +1,5 @@
 // The multigrid preconditioner's coarse levels (internal/aggregation_multigrid.h),
-// checked on a spring Laplacian built here: each coarse matrix is the
+// checked on a scalar spring Laplacian and on a 2x2-block spring system built here: each coarse matrix is the
 // Galerkin product P^T A P of the level above (summed independently here),
 // the coarsest level is solved exactly, and the coarse correction
 // P M_c^{-1} P^T is symmetric and positive semi-definite, which conjugate
@@ -25,17 +25,22 @@ using internal::Csr_view;
 
 namespace {
 
-// A = diag - W on the free (interior) vertices of a Mesh_2 square with a
-// hole, with graded weights k = 1/l^2; boundary vertices are constrained, so
-// A is symmetric positive definite.
+// On the free (interior) vertices of a Mesh_2 square with a hole (boundary
+// vertices constrained, so the matrix is symmetric positive definite), with
+// graded springs k = 1/l^2: scalar: the spring Laplacian (entries -k);
+// block: each edge adds the 2x2 block B = k (e e^T / |e|^2 + I / 4) (a truss
+// along the edge plus a weaker per-coordinate spring), +B on both diagonals
+// and -B off the diagonal, as element models' edge springs do.
 struct Laplacian
 {
+  bool block = false;
   std::vector<Index> offsets{0}, col;
-  std::vector<double> weight, diag;
-  Csr_view view() const { return {diag.size(), offsets.data(), col.data(), weight.data(), diag.data()}; }
+  std::vector<double> values, diag; // 1 or 4 per entry / row
+  std::size_t rows() const { return offsets.size() - 1; }
+  Csr_view view() const { return {rows(), offsets.data(), col.data(), values.data(), diag.data(), block}; }
 };
 
-Laplacian spring_laplacian(const Spring_network<2>& net, const std::vector<Vertex_role>& roles)
+Laplacian spring_laplacian(const Spring_network<2>& net, const std::vector<Vertex_role>& roles, bool block)
 {
   const std::size_t n = net.number_of_vertices();
   std::vector<Index> row(n, Index(-1));
@@ -44,21 +49,29 @@ Laplacian spring_laplacian(const Spring_network<2>& net, const std::vector<Verte
     if(roles[i] == Vertex_role::free)
       row[i] = nf++;
   Laplacian L;
+  L.block = block;
   for(std::size_t i = 0; i < n; ++i) {
     if(row[i] == Index(-1))
       continue;
-    double d = 0;
+    std::array<double, 4> d{};
     for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p) {
       const Index j = net.adjacency[p];
       const double dx = net.points[i][0] - net.points[j][0], dy = net.points[i][1] - net.points[j][1];
-      const double w = 1.0 / (dx * dx + dy * dy);
-      d += w;
+      const double l2 = dx * dx + dy * dy, k = 1.0 / l2;
+      const std::array<double, 4> B = block ? std::array<double, 4>{k * (dx * dx / l2 + 0.25), k * dx * dy / l2,
+                                                                    k * dx * dy / l2, k * (dy * dy / l2 + 0.25)}
+                                            : std::array<double, 4>{k, 0, 0, 0};
+      const int w = block ? 4 : 1;
+      for(int c = 0; c < w; ++c)
+        d[std::size_t(c)] += B[std::size_t(c)];
       if(row[j] != Index(-1)) {
         L.col.push_back(row[j]);
-        L.weight.push_back(w);
+        for(int c = 0; c < w; ++c)
+          L.values.push_back(-B[std::size_t(c)]);
       }
     }
-    L.diag.push_back(d);
+    for(int c = 0; c < (block ? 4 : 1); ++c)
+      L.diag.push_back(d[std::size_t(c)]);
     L.offsets.push_back(Index(L.col.size()));
   }
   return L;
@@ -71,11 +84,20 @@ Vec multiply(const Csr_view& a, const Vec& x)
 {
   Vec y(a.rows);
   for(std::size_t i = 0; i < a.rows; ++i)
-    for(int c = 0; c < 2; ++c) {
-      double s = a.diag[i] * x[i][c];
-      for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
-        s -= a.weight[q] * x[a.col[q]][c];
-      y[i][c] = s;
+    for(int r = 0; r < 2; ++r) {
+      double s = 0;
+      if(a.block) {
+        for(int c = 0; c < 2; ++c)
+          s += a.diag[4 * i + std::size_t(2 * r + c)] * x[i][std::size_t(c)];
+        for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
+          for(int c = 0; c < 2; ++c)
+            s += a.values[4 * q + std::size_t(2 * r + c)] * x[a.col[q]][std::size_t(c)];
+      } else {
+        s = a.diag[i] * x[i][std::size_t(r)];
+        for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
+          s += a.values[q] * x[a.col[q]][std::size_t(r)];
+      }
+      y[i][std::size_t(r)] = s;
     }
   return y;
 }
@@ -105,7 +127,7 @@ struct Setup
   Laplacian A;
 };
 
-Setup setup()
+Setup setup(bool block)
 {
   CDT cdt;
   make_square_with_hole(cdt, 0.5, 10, 0.1); // about 3900 vertices, graded towards the hole
@@ -114,7 +136,7 @@ Setup setup()
   const auto roles = assign_roles(s.net, [&](const Vertex_info<2>& v) {
     return v.on_boundary ? Vertex_role::fixed : Vertex_role::free;
   });
-  s.A = spring_laplacian(s.net, roles);
+  s.A = spring_laplacian(s.net, roles, block);
   return s;
 }
 
@@ -122,7 +144,10 @@ Setup setup()
 
 TEST_CASE("multigrid: every coarse matrix is the Galerkin product P^T A P of the level above", "[solver][multigrid]")
 {
-  const Setup s = setup();
+  const bool block = GENERATE(false, true);
+  INFO((block ? "2x2-block" : "scalar") << " system");
+  const Setup s = setup(block);
+  const std::size_t w = block ? 4 : 1;
   Aggregation_multigrid<2> mg;
   mg.build(s.A.view());
   mg.load(s.A.view());
@@ -131,24 +156,35 @@ TEST_CASE("multigrid: every coarse matrix is the Galerkin product P^T A P of the
   for(std::size_t l = 0; l < mg.number_of_levels(); ++l) {
     INFO("level " << l << ": " << fine.rows << " -> " << mg.rows(l) << " unknowns");
     CHECK(mg.rows(l) * 2 < fine.rows); // it coarsens
-    // (P^T A P)_{AB} = sum over i in A, j in B of A_ij, summed here entry by entry
-    std::map<std::pair<Index, Index>, double> expected;
+    // (P^T A P)_{AB} = sum over i in A, j in B of A_ij (blocks for a block
+    // system), summed here entry by entry
+    std::map<std::pair<Index, Index>, std::array<double, 4>> expected;
     for(std::size_t i = 0; i < fine.rows; ++i) {
       const Index a = mg.parent(l, i);
-      expected[{a, a}] += fine.diag[i];
+      for(std::size_t k = 0; k < w; ++k)
+        expected[{a, a}][k] += fine.diag[i * w + k];
       for(Index q = fine.offsets[i]; q < fine.offsets[i + 1]; ++q)
-        expected[{a, mg.parent(l, fine.col[q])}] -= fine.weight[q];
+        for(std::size_t k = 0; k < w; ++k)
+          expected[{a, mg.parent(l, fine.col[q])}][k] += fine.values[q * w + k];
     }
     const Csr_view c = mg.matrix(l);
+    REQUIRE(c.block == block);
     std::size_t entries = 0;
     double worst = 0;
+    // relative to the largest value of the block: a block's small entries
+    // are sums of cancelling terms
+    auto compare = [&](const double* got, const std::array<double, 4>& e) {
+      double scale = 0;
+      for(std::size_t k = 0; k < w; ++k)
+        scale = std::max(scale, std::abs(e[k]));
+      for(std::size_t k = 0; k < w; ++k)
+        worst = std::max(worst, std::abs(got[k] - e[k]) / scale);
+    };
     for(std::size_t a = 0; a < c.rows; ++a) {
-      const double e = expected.at({Index(a), Index(a)});
-      worst = std::max(worst, std::abs(c.diag[a] - e) / std::abs(e));
+      compare(c.diag + a * w, expected.at({Index(a), Index(a)}));
       ++entries;
       for(Index q = c.offsets[a]; q < c.offsets[a + 1]; ++q) {
-        const double v = expected.at({Index(a), c.col[q]});
-        worst = std::max(worst, std::abs(-c.weight[q] - v) / std::abs(v));
+        compare(c.values + q * w, expected.at({Index(a), c.col[q]}));
         ++entries;
       }
     }
@@ -160,17 +196,19 @@ TEST_CASE("multigrid: every coarse matrix is the Galerkin product P^T A P of the
 
 TEST_CASE("multigrid: the coarsest level is solved exactly", "[solver][multigrid]")
 {
-  const Setup s = setup();
+  const bool block = GENERATE(false, true);
+  INFO((block ? "2x2-block" : "scalar") << " system");
+  const Setup s = setup(block);
   Aggregation_multigrid<2> mg;
-  mg.coarsest_rows = 2000; // one coarse level, which is then the coarsest
-  mg.max_direct_rows = 2000;
+  mg.parameters.coarsest_rows = 2000; // one coarse level, which is then the coarsest
+  mg.parameters.max_direct_rows = 2000;
   mg.build(s.A.view());
   mg.load(s.A.view());
   REQUIRE(mg.number_of_levels() == 1);
-  REQUIRE(mg.rows(0) <= mg.max_direct_rows);
+  REQUIRE(mg.rows(0) <= mg.parameters.max_direct_rows);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
-  Vec r(s.A.diag.size());
+  Vec r(s.A.rows());
   for(auto& v : r)
     v = {u(rng), u(rng)};
   mg.restrict_from(r);
@@ -194,7 +232,9 @@ TEST_CASE("multigrid: the coarsest level is solved exactly", "[solver][multigrid
 
 TEST_CASE("multigrid: the coarse correction is symmetric and positive semi-definite", "[solver][multigrid]")
 {
-  const Setup s = setup();
+  const bool block = GENERATE(false, true);
+  INFO((block ? "2x2-block" : "scalar") << " system");
+  const Setup s = setup(block);
   Aggregation_multigrid<2> mg;
   mg.build(s.A.view());
   mg.load(s.A.view());
@@ -202,7 +242,7 @@ TEST_CASE("multigrid: the coarse correction is symmetric and positive semi-defin
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> d(-1, 1);
   for(int trial = 0; trial < 5; ++trial) {
-    Vec u(s.A.diag.size()), v(s.A.diag.size());
+    Vec u(s.A.rows()), v(s.A.rows());
     for(std::size_t i = 0; i < u.size(); ++i) {
       u[i] = {d(rng), d(rng)};
       v[i] = {d(rng), d(rng)};

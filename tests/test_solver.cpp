@@ -30,11 +30,12 @@ auto on_hole = [](const P2& p) { return std::max(std::abs(p[0]), std::abs(p[1]))
 
 // The increment of one step from the initial mesh, solved directly: the
 // global 2n x 2n stiffness is assembled here from lineal springs k = 1/l on
-// each component and, when `torsional`, the element matrices R^T C R of
+// each component (`truss`: the 2x2 block k e e^T / |e|^2 along the edge
+// instead) and, when `torsional`, the element matrices R^T C R of
 // Torsional_stiffness (checked against finite differences in
 // test_stiffness.cpp); then K_ff d_f = -K_fc d_c.
 std::vector<P2> direct_positions(const Spring_network<2>& net, const std::vector<Vertex_role>& roles,
-                                 const std::vector<P2>& target, bool torsional)
+                                 const std::vector<P2>& target, bool torsional, bool truss = false)
 {
   const std::size_t n = net.number_of_vertices();
   std::vector<int> unknown(n, -1);
@@ -59,13 +60,16 @@ std::vector<P2> direct_positions(const Spring_network<2>& net, const std::vector
       rhs(r) -= v * prescribed[2 * j + b];
   };
   for(const auto& e : net.edges) {
-    const double k = 1.0 / std::hypot(net.points[e[0]][0] - net.points[e[1]][0],
-                                      net.points[e[0]][1] - net.points[e[1]][1]);
+    const double ex = net.points[e[1]][0] - net.points[e[0]][0], ey = net.points[e[1]][1] - net.points[e[0]][1];
+    const double k = 1.0 / std::hypot(ex, ey), l2 = ex * ex + ey * ey;
+    const double B[2][2] = {{truss ? k * ex * ex / l2 : k, truss ? k * ex * ey / l2 : 0},
+                            {truss ? k * ex * ey / l2 : 0, truss ? k * ey * ey / l2 : k}};
     for(int s = 0; s < 2; ++s)
-      for(int c = 0; c < 2; ++c) {
-        add(e[s], c, e[s], c, k);
-        add(e[s], c, e[1 - s], c, -k);
-      }
+      for(int r = 0; r < 2; ++r)
+        for(int c = 0; c < 2; ++c) {
+          add(e[s], r, e[s], c, B[r][c]);
+          add(e[s], r, e[1 - s], c, -B[r][c]);
+        }
   }
   if(torsional)
     for(const auto& el : net.elements) {
@@ -93,6 +97,17 @@ std::vector<P2> direct_positions(const Spring_network<2>& net, const std::vector
   return out;
 }
 
+// Lineal springs k = 1/l acting as trusses along their edges, and no
+// element matrix: the block system of an element model with
+// Edge_spring_form::along_edge.
+struct Truss_model
+{
+  Angle_kind angle_kind(int) const { return Angle_kind::none; }
+  double operator()(double l, const double*, std::size_t, const Stiffness_context&) const { return 1.0 / l; }
+  void add_element_matrix(const std::array<P2, 3>&, double*) const {}
+  Edge_spring_form edge_spring_form() const { return Edge_spring_form::along_edge; }
+};
+
 struct Comparison
 {
   double error = 0;   // max |solver - direct| over vertices and components
@@ -111,7 +126,8 @@ Comparison compare_with_direct(const Spring_network<2>& net, const Model& model,
   for(std::size_t i = 0; i < net.number_of_vertices(); ++i)
     if(roles[i] == Vertex_role::moving)
       target[i] = motion(net.points[i], 1.0);
-  const auto direct = direct_positions(net, roles, target, std::is_same<Model, Torsional_stiffness>::value);
+  const auto direct = direct_positions(net, roles, target, std::is_same<Model, Torsional_stiffness>::value,
+                                       std::is_same<Model, Truss_model>::value);
   Network_deformer<2> deformer(net, roles);
   Deform_options options;
   options.number_of_steps = 1; // one solve, with the stiffness of the initial mesh
@@ -148,6 +164,9 @@ TEST_CASE("solvers: SOR and conjugate gradients match a direct sparse solve", "[
   // eps |d|, about 1e-13 here), so 1e-9 keeps the two apart.
   const double tol = 1e-9;
   const double bound = 10 * tol;
+  // every ordering: the paper's network order, point and block multicolour
+  const Vertex_ordering ordering =
+      GENERATE(Vertex_ordering::block_multicolour, Vertex_ordering::multicolour, Vertex_ordering::natural);
   struct Case
   {
     const char* name;
@@ -165,6 +184,9 @@ TEST_CASE("solvers: SOR and conjugate gradients match a direct sparse solve", "[
     o.relaxation_factor = c.omega;
     o.preconditioner = c.preconditioner;
     o.tolerance = tol;
+    o.ordering = ordering;
+    o.block_rows = ordering == Vertex_ordering::block_multicolour ? 64 : 0; // several blocks on these small meshes
+    INFO("ordering " << int(ordering));
     SECTION(std::string("scalar system (lineal springs), ") + c.name)
     {
       const auto r = compare_with_direct(net, Lineal_stiffness{1.0}, motion, o);
@@ -181,6 +203,77 @@ TEST_CASE("solvers: SOR and conjugate gradients match a direct sparse solve", "[
       CHECK(r.largest > 1e-2);
       CHECK(r.error <= bound);
     }
+    SECTION(std::string("2x2-block system (springs along their edges), ") + c.name)
+    {
+      const auto r = compare_with_direct(net, Truss_model{}, motion, o);
+      INFO("error " << r.error << ", motion " << r.largest << ", iterations " << r.report.steps[0].iterations);
+      CHECK(r.report.converged);
+      CHECK(r.largest > 1e-2);
+      CHECK(r.error <= bound);
+    }
+  }
+}
+
+TEST_CASE("solvers: block and scalar systems take iterations of the same order", "[solver][block]")
+{
+  CDT cdt;
+  make_square_with_hole(cdt, 0.5, 10, 0.1); // about 3900 vertices
+  const auto net = extract_spring_network(cdt).network;
+  const Pitch_motion<2> motion(5, {0, 0});
+  Solver_options o;
+  o.tolerance = 1e-9;
+  const auto scalar = compare_with_direct(net, Lineal_stiffness{1.0}, motion, o);
+  const auto block = compare_with_direct(net, Torsional_stiffness{}, motion, o);
+  INFO("iterations: scalar " << scalar.report.steps[0].iterations << ", block " << block.report.steps[0].iterations);
+  CHECK(block.error <= 10 * o.tolerance);
+  // the multigrid V-cycle on 2x2 blocks (aggregates by block norm, Galerkin
+  // sums of blocks) keeps the block system's iterations of the order of the
+  // scalar system's
+  CHECK(block.report.steps[0].iterations <= 2 * scalar.report.steps[0].iterations);
+}
+
+namespace {
+// per-coordinate edge springs k = 0 and no element matrix: every diagonal
+// block is zero
+struct Zero_block_model
+{
+  Angle_kind angle_kind(int) const { return Angle_kind::none; }
+  double operator()(double, const double*, std::size_t, const Stiffness_context&) const { return 0.0; }
+  void add_element_matrix(const std::array<P2, 3>&, double*) const {}
+};
+} // namespace
+
+TEST_CASE("solvers: a singular diagonal block names its vertex", "[solver][block][errors]")
+{
+  Indexed_mesh<2> mesh;
+  mesh.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}};
+  mesh.elements = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  auto net = make_spring_network<2>(mesh.points, mesh.elements);
+  Network_deformer<2> deformer(net, assign_roles(net, All_boundary_moving{}));
+  try {
+    deformer.run(Translation_motion<2>{{0.1, 0}}, Zero_block_model{});
+    FAIL("no error");
+  } catch(const Vertex_error& e) {
+    CHECK(e.vertex() == 4);
+    CHECK_THAT(e.what(), Catch::Contains("free vertex 4 has a singular or non-finite diagonal stiffness block"));
+  }
+}
+
+TEST_CASE("solvers: a zero-length edge is reported as coincident vertices", "[solver][errors]")
+{
+  Indexed_mesh<2> mesh;
+  mesh.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}};
+  mesh.elements = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  const auto net = make_spring_network<2>(mesh.points, mesh.elements);
+  auto x = net.points;
+  x[4] = x[2]; // the state a collapsing step would reach
+  std::vector<double> k, scratch;
+  try {
+    internal::compute_edge_stiffness(net, x, Lineal_stiffness{}, Stiffness_context{2, 1.0}, k, scratch, 1);
+    FAIL("no error");
+  } catch(const Vertex_error& e) {
+    CHECK(e.vertex() == 2);
+    CHECK_THAT(e.what(), Catch::Contains("coincident vertices 2 and 4"));
   }
 }
 
@@ -335,7 +428,7 @@ TEMPLATE_TEST_CASE_SIG("solvers: a single free vertex converges in one conjugate
   // With lineal springs (k = 1/l, evaluated on the previous step's geometry)
   // the free vertex ends where the final step's weighted mean puts it; the
   // rigid rotation of the whole square is the check that it moved with it.
-  const double a = 30.0 * M_PI / 180.0;
+  const double a = 30.0 * std::acos(-1.0) / 180.0;
   for(std::uint32_t v = 0; v < centre; ++v) {
     const double x = p0[v][0] - centre_of_rotation[0], y = p0[v][1] - centre_of_rotation[1];
     CHECK(mesh.points[v][0] == Approx(centre_of_rotation[0] + std::cos(a) * x - std::sin(a) * y).margin(1e-14));

@@ -80,6 +80,25 @@ TEST_CASE("substepping: a step that inverts without it completes with it, report
   const auto reference = fine.run(turn, Grid_scaled_stiffness{}, options);
   REQUIRE(reference.completed);
   CHECK(bitwise_equal(split.positions(), fine.positions()));
+  // The step's report describes that accepted division only: its solves are
+  // the reference run's, so their iterations add up and the largest error
+  // figures are theirs; the rejected divisions (1, 2, ... k/2 substeps) are
+  // counted apart.
+  std::size_t iterations = 0;
+  double estimate = 0, residual = 0;
+  for(const auto& s : reference.steps) {
+    iterations += s.iterations;
+    estimate = std::max(estimate, s.error_estimate);
+    residual = std::max(residual, s.residual);
+  }
+  CHECK(with.steps[0].iterations == iterations);
+  CHECK(with.steps[0].error_estimate == estimate);
+  CHECK(with.steps[0].residual == residual);
+  CHECK(with.steps[0].converged);
+  std::size_t halvings = 0;
+  while((std::size_t(1) << halvings) < k)
+    ++halvings;
+  CHECK(with.steps[0].rejected_attempts == halvings);
   // and k/2 plain steps fail, or the division before would have been taken
   options.number_of_steps = k / 2;
   Network_deformer<2> coarser(c.net, c.roles);
@@ -114,7 +133,7 @@ struct Turn_then_hold
 {
   std::array<double, 2> operator()(const std::array<double, 2>& p, double t) const
   {
-    const double a = angle_deg(t) * M_PI / 180, c = std::cos(a), s = std::sin(a);
+    const double a = angle_deg(t) * std::acos(-1.0) / 180, c = std::cos(a), s = std::sin(a);
     return {c * p[0] - s * p[1], s * p[0] + c * p[1]};
   }
   double angle_deg(double t) const { return 60 * std::min(1.0, 3 * t); }

@@ -1,6 +1,9 @@
 // A motion computed with 1 and with 2 threads must agree bit for bit: every
 // parallel loop either writes disjoint entries (elements, edges, rows of one
 // colour) or reduces over fixed chunks in a fixed order.
+// Every loop over at least one item takes the parallel path, so that the
+// small test meshes exercise it (the library's default cut-off is 16384).
+#define SPRING_MOTION_PARALLEL_THRESHOLD 1
 #include <spring_motion/spring_motion.h>
 #include <spring_motion/internal/threads.h>
 
@@ -16,14 +19,7 @@ using namespace spring_motion_test;
 
 namespace {
 
-// Lowers the serial cut-off so that the small test meshes take the parallel
-// paths, and restores it.
-struct Force_parallel
-{
-  std::size_t saved = internal::parallel_threshold();
-  Force_parallel() { internal::parallel_threshold() = 0; }
-  ~Force_parallel() { internal::parallel_threshold() = saved; }
-};
+static_assert(internal::parallel_threshold == 1, "the parallel paths must be taken");
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -56,7 +52,6 @@ template <int D, class Motion, class Model = Grid_scaled_stiffness>
 void compare_threads(const Spring_network<D>& net, const std::vector<Vertex_role>& roles, const Motion& motion,
                      Solver_options solver, std::size_t steps, const Model& model = {})
 {
-  Force_parallel force;
   Deform_options options;
   options.number_of_steps = steps;
   options.solver = solver;
@@ -103,6 +98,16 @@ Spring_network<3> small_box(std::size_t n)
   return make_spring_network<3>(std::move(points), std::move(tets));
 }
 
+// Lineal springs acting along their edges and no element matrix: a 3D block
+// system (Edge_spring_form::along_edge).
+struct Truss_3
+{
+  Angle_kind angle_kind(int) const { return Angle_kind::none; }
+  double operator()(double l, const double*, std::size_t, const Stiffness_context&) const { return 1.0 / l; }
+  void add_element_matrix(const std::array<std::array<double, 3>, 4>&, double*) const {}
+  Edge_spring_form edge_spring_form() const { return Edge_spring_form::along_edge; }
+};
+
 } // namespace
 
 TEST_CASE("thread determinism: 2D NACA0012 pitch, default solver and SOR, 1 vs 2 threads bitwise",
@@ -123,9 +128,20 @@ TEST_CASE("thread determinism: 2D NACA0012 pitch, default solver and SOR, 1 vs 2
     o.preconditioner = Preconditioner::symmetric_gauss_seidel;
     compare_threads(net, roles, motion, o, 3);
   }
-  SECTION("torsional springs (element matrices in parallel, block system)")
+  SECTION("torsional springs (block system), default solver")
   {
     compare_threads(net, roles, motion, Solver_options{}, 2, Torsional_stiffness{});
+  }
+  SECTION("torsional springs (block system), SOR")
+  {
+    compare_threads(net, roles, motion, Solver_options::paper(), 2, Torsional_stiffness{});
+  }
+  SECTION("torsional springs (block system), conjugate gradients + symmetric Gauss-Seidel, point multicolour")
+  {
+    Solver_options o;
+    o.preconditioner = Preconditioner::symmetric_gauss_seidel;
+    o.ordering = Vertex_ordering::multicolour;
+    compare_threads(net, roles, motion, o, 2, Torsional_stiffness{});
   }
   SECTION("default solver, point multicolour ordering")
   {
@@ -149,4 +165,8 @@ TEST_CASE("thread determinism: 3D structured box, default solver and SOR, 1 vs 2
   motion.axis = {0, 0, 1};
   SECTION("default solver") { compare_threads(net, roles, motion, Solver_options{}, 3); }
   SECTION("SOR") { compare_threads(net, roles, motion, Solver_options::paper(), 2); }
+  SECTION("3x3-block system (springs along their edges), default solver")
+  {
+    compare_threads(net, roles, motion, Solver_options{}, 2, Truss_3{});
+  }
 }

@@ -22,12 +22,17 @@ struct Step_report
   std::size_t step = 0;
   double fraction = 0;  ///< t reached, in [0, 1]
   double angle_deg = std::numeric_limits<double>::quiet_NaN(); ///< when the motion has an angle
+  // The solver figures describe the accepted attempt (with substeps: its
+  // substeps), or for a rejected step its last attempt.
   std::size_t iterations = 0; ///< sweeps, summed over substeps
   bool converged = true;      ///< every solve of the step met the tolerance
   double max_update = 0;      ///< largest last-sweep change over the step's solves
   double residual = 0;        ///< largest scaled residual over the step's solves
   double error_estimate = 0;  ///< largest error estimate over the step's solves
   std::size_t substeps = 1;   ///< equal substeps the step took (1: none; a power of two)
+  /// attempts rejected (an inverted element) before the one described; their
+  /// time is included in the timings below
+  std::size_t rejected_attempts = 0;
   std::size_t inverted = 0;   ///< elements inverted by the rejected attempt (0 if accepted)
   double min_size_ratio = std::numeric_limits<double>::quiet_NaN();
   double max_size_ratio = std::numeric_limits<double>::quiet_NaN();

@@ -18,29 +18,30 @@ enum class Solver_method
   sor
 };
 
-/// What preconditions conjugate gradients (edge models; element models and
-/// the natural ordering always use symmetric Gauss-Seidel).
+/// What preconditions conjugate gradients, for scalar (edge-model) and block
+/// (element-model) systems alike.
 enum class Preconditioner
 {
   /// a symmetric Gauss-Seidel (SSOR) sweep in the solver's vertex ordering
   symmetric_gauss_seidel,
   /// one multigrid V-cycle: a symmetric Gauss-Seidel sweep on the mesh, the
   /// coarse levels by aggregation of strongly coupled vertices (the
-  /// aggregates chosen once per network, their springs summed every step),
+  /// aggregates chosen from the first system the solver state is built for,
+  /// their springs or D x D blocks summed every step),
   /// the coarsest solved directly. The default: several times fewer
   /// iterations on graded meshes, where single-level sweeps converge slowly.
   multigrid
 };
 
 /// The order in which Gauss-Seidel visits the free vertices (SOR sweeps and
-/// the conjugate-gradient preconditioner), for edge (scalar) models.
+/// the conjugate-gradient preconditioner), for scalar and block systems.
 enum class Vertex_ordering
 {
   /// colour by colour (no two neighbours share a colour), reverse
   /// Cuthill-McKee within a colour: runs in parallel within each colour and
   /// gives bitwise the same result for any thread count.
   multicolour,
-  /// the network's vertex order, one thread (the original implementation)
+  /// the network's vertex order, one thread (the paper's SOR sweep)
   natural,
   /// blocks of consecutive reverse Cuthill-McKee rows as wide as the ordering's
   /// bandwidth, the blocks coloured (two colours, typically): Gauss-Seidel in
@@ -53,9 +54,10 @@ enum class Vertex_ordering
 /// When a solve stops.
 enum class Stopping_rule
 {
-  /// when the estimated error of the iterate is at most the tolerance: the
-  /// last change u_k times q / (1 - q), q the observed contraction per
-  /// iteration (geometric mean over the last four). The default.
+  /// when the estimated error of the iterate is at most half the tolerance
+  /// (and the last change at most the tolerance): the last change u_k times
+  /// q / (1 - q), q the largest ratio of successive changes over the last
+  /// four iterations. The default; docs/method.md ("Solver") says why.
   error_estimate,
   /// the paper's Eq. 12: when no component changed by more than the
   /// tolerance in the last iteration. This is not the error: a slowly
@@ -86,8 +88,28 @@ struct Solver_options
   /// increments (per unit of motion fraction) instead of the last one. The
   /// fixed point is the same; the start is closer by an order of the step.
   bool extrapolate = true;
-  /// Gauss-Seidel order (element models always use `natural`).
+  /// Gauss-Seidel order.
   Vertex_ordering ordering = Vertex_ordering::block_multicolour;
+  /// Rows per block of the `block_multicolour` ordering; 0: the bandwidth of
+  /// the reverse Cuthill-McKee ordering of the free vertices, at least 256
+  /// (then a block touches only the blocks before and after it: two colours).
+  std::size_t block_rows = 0;
+  /// Multigrid strength of connection: vertex j is a strong neighbour of i
+  /// when |K_ij| >= multigrid_strength sqrt(|K_ii| |K_jj|) (Frobenius norms of
+  /// the D x D blocks for element models); aggregates group strong
+  /// neighbours. 0.02-0.04 took the fewest iterations on the two NACA0012
+  /// meshes (spring_motion_bench --omega-table).
+  double multigrid_strength = 0.04;
+  /// The coarse correction of the V-cycle is scaled by this factor, in
+  /// (0, 2): over-correction makes up for the too-high energy of piecewise
+  /// constant coarse functions (measured like the strength).
+  double multigrid_correction = 1.3;
+  /// A multigrid level with at most this many vertices is the coarsest.
+  std::size_t multigrid_coarsest_rows = 64;
+  /// The coarsest level is solved by dense Cholesky when it has at most this
+  /// many vertices (coarsening can stall above it: then a symmetric
+  /// Gauss-Seidel sweep smooths it instead).
+  std::size_t multigrid_max_direct_rows = 256;
   /// OpenMP threads for stiffness, solve, checks and quality; 0: OpenMP's
   /// default. The result does not depend on it.
   int threads = 0;

@@ -7,7 +7,7 @@
 #include <spring_motion/internal/threads.h>
 #include <spring_motion/internal/angles.h>
 #include <spring_motion/internal/element_points.h>
-#include <spring_motion/internal/linear_system.h>
+#include <spring_motion/internal/free_system.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
 
 #include <algorithm>
@@ -72,8 +72,9 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   const auto& off = by_face ? net.edge_face_slot_offsets : net.edge_slot_offsets;
   const long ne = long(net.number_of_edges());
   k.resize(std::size_t(ne));
-  long bad = -1;
-#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(ne)))
+  long bad = ne, coincident = ne;
+#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(ne))) \
+    reduction(min : bad, coincident)
   for(long e = 0; e < ne; ++e) {
     const auto& ed = net.edges[std::size_t(e)];
     const double l = distance<D>(x[ed[0]], x[ed[1]]); // > 0 for a tiny edge too
@@ -86,88 +87,108 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
     // a zero-length edge (coincident vertices) never reaches a model's 1/l
     const double v = l > 0 ? model(l, a, na, ctx) : 0.0;
     k[std::size_t(e)] = v;
-    if(!(v >= 0 && std::isfinite(v)) || l == 0) {
-#pragma omp critical(spring_motion_bad_stiffness)
-      if(bad < 0 || e < bad)
-        bad = e;
-    }
+    if(l == 0)
+      coincident = std::min(coincident, e);
+    else if(!(v >= 0 && std::isfinite(v)))
+      bad = std::min(bad, e);
   }
-  if(bad >= 0) {
+  if(coincident < ne) {
+    const auto& ed = net.edges[std::size_t(coincident)];
+    SPRING_MOTION_VERTEX_CHECK(false, ed[0], "coincident vertices " << ed[0] << " and " << ed[1]
+                                                 << ": the spring between them has zero length");
+  }
+  if(bad < ne) {
     const auto& ed = net.edges[std::size_t(bad)];
     SPRING_MOTION_CHECK(false, "stiffness model '" << describe_model(model, D).name << "' gave k = "
                                                    << k[std::size_t(bad)] << " on edge " << ed[0] << "-" << ed[1]
-                                                   << ": expected a finite value >= 0 on an edge of non-zero length");
+                                                   << ": expected a finite value >= 0");
   }
 }
 
-/// Assembles the step's system from the edge stiffness (and, for element
-/// models, the element matrices) on the network's CSR pattern.
+/// Fills the block (element-model) system `fs`, built for `net`, with this
+/// step's values: the edge springs (k I per coordinate, or the truss
+/// k e e^T / |e|^2 along the edge, as `edge_spring_form(model)` says) row by
+/// row, then each element matrix scattered through the precomputed
+/// destinations; then the diagonal blocks are inverted (a singular one
+/// throws Vertex_error).
 template <int D, class Model>
-void assemble_system(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x, const Model& model,
-                     const std::vector<double>& k, Linear_system<D>& sys, int threads)
+void assemble_block_system(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
+                           const Model& model, const std::vector<double>& k, Free_system<D>& fs, int threads)
 {
-  const std::size_t n = net.number_of_vertices();
-  const long ln = long(n);
-  constexpr bool element_model = Is_element_model<Model, D>::value;
-  sys.block = element_model;
-  if constexpr(!element_model) {
-    sys.weight.resize(net.adjacency.size());
-    sys.diagonal.resize(n);
-#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, n))
-    for(long i = 0; i < ln; ++i) {
-      double d = 0;
-      for(Index p = net.adjacency_offsets[std::size_t(i)]; p < net.adjacency_offsets[std::size_t(i) + 1]; ++p) {
-        const double w = k[net.adjacency_edge[p]];
-        sys.weight[p] = w;
-        d += w;
+  constexpr int DD = D * D;
+  constexpr int ND = (D + 1) * D;
+  const bool along_edge = edge_spring_form(model) == Edge_spring_form::along_edge;
+  const auto& order = fs.order();
+  const auto& offsets = fs.row_offsets();
+  const auto& col = fs.columns();
+  const auto& edge = fs.nonzero_edges();
+  const auto& bnd_offsets = fs.bnd_offsets();
+  const auto& bnd_vertex = fs.bnd_vertices();
+  const auto& bnd_edge = fs.bnd_edges();
+  double* blocks = fs.block_values();
+  const long nf = long(order.size());
+  // the spring block B of edge e between i and j: row i gets +B on its
+  // diagonal and -B at (i, j)
+  auto spring = [&](Index e, Index i, Index j, double* off, double* diag) {
+    const double w = k[e];
+    if(!along_edge) {
+      for(int r = 0; r < DD; ++r)
+        off[r] = 0;
+      for(int c = 0; c < D; ++c) {
+        off[c * D + c] = -w;
+        diag[c * D + c] += w;
       }
-      sys.diagonal[std::size_t(i)] = d;
+      return;
     }
-  } else {
-    constexpr int DD = D * D;
-    constexpr int ND = (D + 1) * D;
-    sys.off_blocks.assign(net.adjacency.size() * DD, 0.0);
-    sys.diagonal_blocks.assign(n * DD, 0.0);
-    for(std::size_t i = 0; i < n; ++i)
-      for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p) {
-        const double w = k[net.adjacency_edge[p]];
-        for(int c = 0; c < D; ++c) {
-          sys.off_blocks[p * DD + c * D + c] -= w;
-          sys.diagonal_blocks[i * DD + c * D + c] += w;
-        }
+    std::array<double, D> d;
+    double l2 = 0;
+    for(int c = 0; c < D; ++c) {
+      d[c] = x[j][c] - x[i][c];
+      l2 += d[c] * d[c];
+    }
+    for(int r = 0; r < D; ++r)
+      for(int c = 0; c < D; ++c) {
+        const double b = w * d[r] * d[c] / l2;
+        off[r * D + c] = -b;
+        diag[r * D + c] += b;
       }
-    std::array<double, ND * ND> Ke;
-    for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
-      Ke.fill(0.0);
-      model.add_element_matrix(element_points<D>(net.elements, x, t), Ke.data());
-      const auto& el = net.elements[t];
-      for(int a = 0; a <= D; ++a)
-        for(int b = 0; b <= D; ++b) {
-          double* dst;
-          if(a == b) {
-            dst = &sys.diagonal_blocks[std::size_t(el[a]) * DD];
-          } else {
-            const auto first = net.adjacency.begin() + net.adjacency_offsets[el[a]];
-            const auto last = net.adjacency.begin() + net.adjacency_offsets[el[a] + 1];
-            const auto it = std::lower_bound(first, last, el[b]);
-            dst = &sys.off_blocks[std::size_t(it - net.adjacency.begin()) * DD];
-          }
-          for(int r = 0; r < D; ++r)
-            for(int c = 0; c < D; ++c) {
-              const double v = Ke[(a * D + r) * ND + (b * D + c)];
-              SPRING_MOTION_CHECK(std::isfinite(v), "element stiffness of element " << t << " is not finite");
-              dst[r * D + c] += v;
-            }
-        }
-    }
-    sys.diagonal_inverse.resize(n * DD);
-    for(std::size_t i = 0; i < n; ++i) {
-      if(net.adjacency_offsets[i] == net.adjacency_offsets[i + 1])
-        continue; // isolated vertex: never solved for
-      const auto inv = invert_block<D>(&sys.diagonal_blocks[i * DD]);
-      std::copy(inv.begin(), inv.end(), sys.diagonal_inverse.begin() + std::ptrdiff_t(i * DD));
-    }
+  };
+#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(nf)))
+  for(long r = 0; r < nf; ++r) {
+    const std::size_t R = std::size_t(r);
+    const Index i = order[R];
+    double* diag = blocks + R * DD;
+    for(int c = 0; c < DD; ++c)
+      diag[c] = 0;
+    for(Index q = offsets[R]; q < offsets[R + 1]; ++q)
+      spring(edge[q], i, order[col[q]], blocks + fs.off_block(q) * DD, diag);
+    for(Index q = bnd_offsets[R]; q < bnd_offsets[R + 1]; ++q)
+      spring(bnd_edge[q], i, bnd_vertex[q], blocks + fs.bnd_block(q) * DD, diag);
   }
+  // Element matrices in element order, one thread: two elements share
+  // blocks, and a fixed order keeps the sums independent of the thread count.
+  const auto& elements = fs.assembled_elements();
+  const auto& dest = fs.element_destinations();
+  std::array<double, ND * ND> Ke;
+  for(std::size_t s = 0; s < elements.size(); ++s) {
+    const std::size_t t = elements[s];
+    Ke.fill(0.0);
+    model.add_element_matrix(element_points<D>(net.elements, x, t), Ke.data());
+    for(int a = 0; a <= D; ++a)
+      for(int b = 0; b <= D; ++b) {
+        const Index to = dest[(s * (D + 1) + std::size_t(a)) * (D + 1) + std::size_t(b)];
+        if(to == Free_system<D>::none)
+          continue;
+        double* out = blocks + std::size_t(to) * DD;
+        for(int r = 0; r < D; ++r)
+          for(int c = 0; c < D; ++c) {
+            const double v = Ke[std::size_t((a * D + r) * ND + (b * D + c))];
+            SPRING_MOTION_ELEMENT_CHECK(std::isfinite(v), t, "element stiffness of element " << t << " is not finite");
+            out[r * D + c] += v;
+          }
+      }
+  }
+  fs.finish_block_load(threads);
 }
 
 } // namespace internal

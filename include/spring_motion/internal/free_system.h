@@ -6,7 +6,8 @@
 #include <spring_motion/Solver_options.h>
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/internal/aggregation_multigrid.h>
-#include <spring_motion/internal/linear_system.h>
+#include <spring_motion/internal/block_ops.h>
+#include <spring_motion/internal/stopping_test.h>
 #include <spring_motion/internal/threads.h>
 
 #include <boost/graph/adjacency_list.hpp>
@@ -26,36 +27,276 @@ namespace internal {
 /// Rows per chunk of every reduction: partial results are formed per fixed
 /// chunk and added in chunk order, so sums do not depend on the thread count.
 constexpr std::size_t reduction_chunk = 1024;
-/// The smallest block of the block-multicolour ordering (blocks are as wide as
-/// the reverse Cuthill-McKee bandwidth, at least this).
+/// The smallest block of the block-multicolour ordering when its width is
+/// the reverse Cuthill-McKee bandwidth (Solver_options::block_rows = 0).
 constexpr std::size_t min_block_rows = 256;
 
-/// The scalar (edge-model) spring system restricted to the free vertices, in
-/// flat arrays ordered for speed: free vertices are numbered colour by colour
-/// (a greedy colouring of the free spring graph by Boost's
-/// `sequential_vertex_coloring`, no two neighbours share a colour), and within
-/// a colour in reverse Cuthill-McKee order (Boost's `cuthill_mckee_ordering`)
-/// for locality. Gauss-Seidel then runs in parallel over each colour, and
-/// gives the same result for any thread count: a row reads only rows of other
-/// colours. The ordering is computed once per network; `load` refills the
-/// values every step.
+/// The spring system of one step restricted to the free vertices: the only
+/// home of a step's linear system, for scalar systems (edge models: one value
+/// per nonzero, acting on the D components alike) and block systems (element
+/// models: a D x D block per nonzero). Free vertices are numbered in the
+/// solver's order: colour by colour (a greedy colouring of the free spring
+/// graph, or of its blocks of consecutive reverse Cuthill-McKee rows, by
+/// Boost's `sequential_vertex_coloring`) and in reverse Cuthill-McKee order
+/// within a colour (Boost's `cuthill_mckee_ordering`) for locality; or in
+/// network order (`Vertex_ordering::natural`, one block, one thread).
+/// Gauss-Seidel then runs in parallel over the blocks of each colour, and
+/// gives the same result for any thread count: a block reads only its own
+/// rows and rows of other colours.
+///
+/// The ordering, the pattern and the multigrid aggregates are the solver
+/// state: `build` makes them for a network, a free set, scalar or block, and
+/// the options they depend on (`needs_build` says when they are stale); every
+/// step then only refills the values (`load_scalar`, or the block assembler
+/// of assemble.h) and the start (`set_start`).
 template <int D>
 class Free_system
 {
 public:
   using Row = std::array<double, D>;
+  static constexpr int DD = D * D;
+  static constexpr Index none = std::numeric_limits<Index>::max();
 
-  bool empty() const { return order_.empty() && !built_; }
   bool built() const { return built_; }
+  bool block() const { return block_; }
   std::size_t rows() const { return order_.size(); }
   std::size_t blocks() const { return block_offsets_.empty() ? 0 : block_offsets_.size() - 1; }
   std::size_t colours() const { return colour_offsets_.empty() ? 0 : colour_offsets_.size() - 1; }
   std::size_t nonzeros() const { return col_.size(); }
+  /// row -> network vertex
   const std::vector<Index>& order() const { return order_; }
+  const std::vector<Index>& row_offsets() const { return row_offsets_; }
+  const std::vector<Index>& columns() const { return col_; }
+  /// the network edge of each nonzero (free-free entry)
+  const std::vector<Index>& nonzero_edges() const { return edge_; }
+  /// constrained neighbours of each row: bnd_offsets()[r] .. [r + 1)
+  const std::vector<Index>& bnd_offsets() const { return bnd_offsets_; }
+  const std::vector<Index>& bnd_vertices() const { return bnd_vertex_; }
+  const std::vector<Index>& bnd_edges() const { return bnd_edge_; }
+  /// block systems: the elements with a free vertex, and for each of them
+  /// (D+1)^2 destinations of its element matrix's blocks (a, b) in
+  /// block_values() (in blocks of D*D), `none` for rows of constrained vertices
+  const std::vector<Index>& assembled_elements() const { return elements_; }
+  const std::vector<Index>& element_destinations() const { return element_dest_; }
+  /// block systems: diagonal blocks (rows), then the off-diagonal blocks
+  /// (nonzeros), then the blocks coupling rows to constrained vertices
+  double* block_values() { return blocks_.data(); }
+  std::size_t off_block(Index q) const { return order_.size() + q; }
+  std::size_t bnd_block(Index q) const { return order_.size() + col_.size() + q; }
 
-  /// Builds the ordering and the pattern for these free vertices.
-  void build(const Spring_network<D>& net, const std::vector<Index>& free_vertices,
-             std::size_t block_rows = 0)
+  /// Matrix entries in the public layout (Step_system_view): scalar: one
+  /// value per nonzero and per row; block: D*D each, row-major.
+  const double* values() const { return block_ ? blocks_.data() + order_.size() * DD : val_.data(); }
+  const double* diagonal() const { return block_ ? blocks_.data() : diag_.data(); }
+  const std::vector<Row>& rhs() const { return b_; }
+  const std::vector<Row>& solution() const { return x_; }
+
+  /// Whether the state must be built (again) for these free vertices, this
+  /// kind of system and these options.
+  bool needs_build(const Spring_network<D>& net, const std::vector<Index>& free_vertices, bool block,
+                   const Solver_options& o) const
+  {
+    return !built_ || block != block_ || o.ordering != ordering_ || o.block_rows != block_rows_ ||
+           o.preconditioner != preconditioner_ || o.multigrid_strength != multigrid_.parameters.strength ||
+           o.multigrid_coarsest_rows != multigrid_.parameters.coarsest_rows ||
+           o.multigrid_max_direct_rows != multigrid_.parameters.max_direct_rows ||
+           net.adjacency.size() != network_entries_ || net.number_of_elements() != network_elements_ ||
+           free_vertices != free_;
+  }
+
+  /// Builds the ordering and the pattern (and, for block systems, the
+  /// element matrices' destinations); the multigrid aggregates follow on the
+  /// first multigrid solve, from its system.
+  void build(const Spring_network<D>& net, const std::vector<Index>& free_vertices, bool block,
+             const Solver_options& o)
+  {
+    block_ = block;
+    ordering_ = o.ordering;
+    block_rows_ = o.block_rows;
+    preconditioner_ = o.preconditioner;
+    network_entries_ = net.adjacency.size();
+    network_elements_ = net.number_of_elements();
+    free_ = free_vertices;
+    multigrid_ = Aggregation_multigrid<D>();
+    multigrid_.parameters = {o.multigrid_strength, o.multigrid_correction, o.multigrid_coarsest_rows,
+                             o.multigrid_max_direct_rows};
+    const std::size_t n = net.number_of_vertices();
+    const std::size_t nf = free_vertices.size();
+    std::vector<Index> row_of(n, none);
+    if(o.ordering == Vertex_ordering::natural)
+      natural_order(free_vertices);
+    else
+      coloured_order(net, free_vertices, o.ordering == Vertex_ordering::multicolour ? 1 : o.block_rows);
+    for(std::size_t r = 0; r < nf; ++r)
+      row_of[order_[r]] = Index(r);
+    // pattern: free neighbours by row, constrained neighbours apart
+    row_offsets_.assign(nf + 1, 0);
+    bnd_offsets_.assign(nf + 1, 0);
+    col_.clear();
+    edge_.clear();
+    bnd_vertex_.clear();
+    bnd_edge_.clear();
+    for(std::size_t r = 0; r < nf; ++r) {
+      const Index i = order_[r];
+      for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p) {
+        const Index j = net.adjacency[p];
+        if(row_of[j] != none) {
+          col_.push_back(row_of[j]);
+          edge_.push_back(net.adjacency_edge[p]);
+        } else {
+          bnd_vertex_.push_back(j);
+          bnd_edge_.push_back(net.adjacency_edge[p]);
+        }
+      }
+      row_offsets_[r + 1] = Index(col_.size());
+      bnd_offsets_[r + 1] = Index(bnd_vertex_.size());
+    }
+    elements_.clear();
+    element_dest_.clear();
+    val_.clear();
+    bnd_val_.clear();
+    diag_.clear();
+    inv_diag_.clear();
+    blocks_.clear();
+    if(block)
+      element_destinations(net, row_of);
+    const std::size_t w = block ? DD : 1;
+    if(block) {
+      blocks_.assign((nf + col_.size() + bnd_vertex_.size()) * w, 0.0);
+    } else {
+      val_.resize(col_.size());
+      bnd_val_.resize(bnd_vertex_.size());
+      diag_.resize(nf);
+    }
+    inv_diag_.resize(nf * w);
+    b_.resize(nf);
+    x_.resize(nf);
+    built_ = true;
+  }
+
+  /// This step's values of a scalar system from the edge stiffness k (one
+  /// value per network edge): read straight into solver order.
+  void load_scalar(const Spring_network<D>& net, const std::vector<double>& k, int threads)
+  {
+    const long nf = long(order_.size());
+    long bad = nf;
+#pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(min : bad)
+    for(long r = 0; r < nf; ++r) {
+      const std::size_t R = std::size_t(r);
+      for(Index q = row_offsets_[R]; q < row_offsets_[R + 1]; ++q)
+        val_[q] = -k[edge_[q]];
+      for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
+        bnd_val_[q] = -k[bnd_edge_[q]];
+      // summed in network order, as the vertex's springs are listed
+      const Index i = order_[R];
+      double d = 0;
+      for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p)
+        d += k[net.adjacency_edge[p]];
+      diag_[R] = d;
+      inv_diag_[R] = 1.0 / d;
+      if(!(d > 0 && std::isfinite(d)) && r < bad)
+        bad = r;
+    }
+    if(bad < nf)
+      SPRING_MOTION_VERTEX_CHECK(false, order_[std::size_t(bad)],
+                                 "free vertex " << order_[std::size_t(bad)] << " has zero total stiffness ("
+                                                << diag_[std::size_t(bad)]
+                                                << "): the model gave k = 0 on all its edges");
+  }
+
+  /// Inverts the diagonal blocks of a block system once its values are in;
+  /// a singular or non-finite block throws Vertex_error naming its vertex.
+  void finish_block_load(int threads)
+  {
+    const long nf = long(order_.size());
+    long bad = nf;
+#pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(min : bad)
+    for(long r = 0; r < nf; ++r)
+      if(!invert_block<D>(&blocks_[std::size_t(r) * DD], &inv_diag_[std::size_t(r) * DD]) && r < bad)
+        bad = r;
+    if(bad < nf) {
+      const double* m = &blocks_[std::size_t(bad) * DD];
+      std::ostringstream block;
+      for(int k = 0; k < DD; ++k)
+        block << (k ? (k % D ? ", " : "; ") : "") << m[k];
+      SPRING_MOTION_VERTEX_CHECK(false, order_[std::size_t(bad)],
+                                 "free vertex " << order_[std::size_t(bad)]
+                                                << " has a singular or non-finite diagonal stiffness block ["
+                                                << block.str() << "]");
+    }
+  }
+
+  /// The start: the iterate at free vertices and the right-hand side from
+  /// the prescribed increments at constrained ones, both read from x (one
+  /// entry per network vertex).
+  void set_start(const std::vector<Row>& x, int threads)
+  {
+    const long nf = long(order_.size());
+#pragma omp parallel for schedule(static) num_threads(team(threads))
+    for(long r = 0; r < nf; ++r) {
+      const std::size_t R = std::size_t(r);
+      Row s{};
+      if(block_)
+        for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
+          subtract_block_product<D>(s, &blocks_[bnd_block(q) * DD], x[bnd_vertex_[q]]);
+      else
+        for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
+          for(int c = 0; c < D; ++c)
+            s[c] -= bnd_val_[q] * x[bnd_vertex_[q]][c];
+      b_[R] = s;
+      x_[R] = x[order_[R]];
+    }
+  }
+
+  /// Writes the solution into the free entries of x.
+  void store(std::vector<Row>& x) const
+  {
+    for(std::size_t r = 0; r < order_.size(); ++r)
+      x[order_[r]] = x_[r];
+  }
+
+  /// One SOR sweep in the solver's order on the loaded system; returns the
+  /// largest change.
+  double sor_sweep(double omega, int threads)
+  {
+    return block_ ? sweep<true>(x_, b_, omega, threads, true) : sweep<false>(x_, b_, omega, threads, true);
+  }
+
+  /// Bytes one scalar sweep must move at least: the pattern and values once,
+  /// the right-hand side and inverse diagonal once, the solution read and
+  /// written.
+  double bytes_per_sweep() const
+  {
+    const double nf = double(order_.size()), nnz = double(col_.size()), w = block_ ? DD : 1;
+    return nnz * (sizeof(Index) + w * sizeof(double)) +
+           nf * (sizeof(Index) + w * sizeof(double) + D * sizeof(double) + 2.0 * D * sizeof(double));
+  }
+
+  /// Solves the loaded system from the loaded start with the method the
+  /// options select.
+  Solve_report solve(const Solver_options& options)
+  {
+    check_options(options);
+    if(options.method == Solver_method::sor)
+      return block_ ? solve_sor<true>(options) : solve_sor<false>(options);
+    return block_ ? solve_conjugate_gradient<true>(options) : solve_conjugate_gradient<false>(options);
+  }
+
+  /// The multigrid levels of the last multigrid-preconditioned solve.
+  const Aggregation_multigrid<D>& multigrid() const { return multigrid_; }
+
+private:
+  int team(int threads) const { return thread_count(threads, order_.size()); }
+
+  void natural_order(const std::vector<Index>& free_vertices)
+  {
+    order_ = free_vertices;
+    block_offsets_ = {0, Index(order_.size())};
+    colour_offsets_ = {0, 1};
+  }
+
+  void coloured_order(const Spring_network<D>& net, const std::vector<Index>& free_vertices,
+                      std::size_t block_rows)
   {
     const std::size_t n = net.number_of_vertices();
     const std::size_t nf = free_vertices.size();
@@ -124,219 +365,110 @@ public:
     std::stable_sort(blocks.begin(), blocks.end(),
                      [&](std::size_t a, std::size_t b) { return colour[a] < colour[b]; });
     order_.resize(nf);
-    std::vector<Index> row_of(n, none);
     block_offsets_.assign(nb + 1, 0);
     colour_offsets_.assign(ncolours + 1, 0);
     std::size_t r = 0;
     for(std::size_t q = 0; q < nb; ++q) {
       const std::size_t b = blocks[q];
-      for(std::size_t pos = b * B; pos < std::min(nf, (b + 1) * B); ++pos, ++r) {
+      for(std::size_t pos = b * B; pos < std::min(nf, (b + 1) * B); ++pos, ++r)
         order_[r] = free_vertices[rcm[pos]];
-        row_of[order_[r]] = Index(r);
-      }
       block_offsets_[q + 1] = Index(r);
       ++colour_offsets_[colour[b] + 1];
     }
     for(std::size_t c = 0; c < ncolours; ++c)
       colour_offsets_[c + 1] += colour_offsets_[c];
-    // pattern: free neighbours by row, constrained neighbours apart
-    row_offsets_.assign(nf + 1, 0);
-    bnd_offsets_.assign(nf + 1, 0);
-    col_.clear();
-    src_.clear();
-    bnd_vertex_.clear();
-    bnd_src_.clear();
-    for(std::size_t r = 0; r < nf; ++r) {
-      const Index i = order_[r];
-      for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p) {
-        const Index j = net.adjacency[p];
-        if(row_of[j] != none) {
-          col_.push_back(row_of[j]);
-          src_.push_back(p);
-        } else {
-          bnd_vertex_.push_back(j);
-          bnd_src_.push_back(p);
-        }
-      }
-      row_offsets_[r + 1] = Index(col_.size());
-      bnd_offsets_[r + 1] = Index(bnd_vertex_.size());
-    }
-    val_.resize(col_.size());
-    inv_diag_.resize(nf);
-    diag_.resize(nf);
-    b_.resize(nf);
-    x_.resize(nf);
-    built_ = true;
   }
 
-  /// Takes this step's values from `sys` and the initial iterate from x (free
-  /// entries: the start; constrained entries: the prescribed increments).
-  void load(const Linear_system<D>& sys, const Field<D>& x, int threads)
+  // For every element with a free vertex, where each of its (D+1)^2 blocks
+  // goes: a diagonal block, an off-diagonal one, a coupling to a constrained
+  // vertex, or nowhere (a constrained vertex's row).
+  void element_destinations(const Spring_network<D>& net, const std::vector<Index>& row_of)
   {
-    const long nf = long(order_.size());
-    const int nt = team(threads);
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long r = 0; r < nf; ++r) {
-      const std::size_t R = std::size_t(r);
-      for(Index q = row_offsets_[R]; q < row_offsets_[R + 1]; ++q)
-        val_[q] = sys.weight[src_[q]];
-      Row s{};
-      for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q) {
-        const double w = sys.weight[bnd_src_[q]];
+    for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
+      const auto& el = net.elements[t];
+      bool any = false;
+      for(Index v : el)
+        any = any || row_of[v] != none;
+      if(!any)
+        continue;
+      elements_.push_back(Index(t));
+      for(int a = 0; a <= D; ++a)
+        for(int b = 0; b <= D; ++b) {
+          const Index r = row_of[el[std::size_t(a)]];
+          Index dest = none;
+          if(r != none) {
+            const Index c = row_of[el[std::size_t(b)]];
+            if(a == b)
+              dest = r;
+            else if(c != none) {
+              for(Index q = row_offsets_[r]; q < row_offsets_[r + 1]; ++q)
+                if(col_[q] == c)
+                  dest = Index(off_block(q));
+            } else {
+              for(Index q = bnd_offsets_[r]; q < bnd_offsets_[r + 1]; ++q)
+                if(bnd_vertex_[q] == el[std::size_t(b)])
+                  dest = Index(bnd_block(q));
+            }
+            SPRING_MOTION_CHECK(dest != none, "element " << t << ": an edge is missing from the network");
+          }
+          element_dest_.push_back(dest);
+        }
+    }
+    SPRING_MOTION_CHECK((order_.size() + col_.size() + bnd_vertex_.size()) < std::size_t(none),
+                        "too many stiffness blocks for 32-bit indices");
+  }
+
+  // s = rhs_k - sum over the row's off-diagonal entries of A_kj x_j
+  template <bool B>
+  Row off_residual(const std::vector<Row>& x, const Row& rhs, std::size_t k) const
+  {
+    Row s = rhs;
+    if constexpr(B) {
+      for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q)
+        subtract_block_product<D>(s, &blocks_[off_block(q) * DD], x[col_[q]]);
+    } else {
+      for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q) {
+        const double v = val_[q];
+        const Row& xj = x[col_[q]];
         for(int c = 0; c < D; ++c)
-          s[c] += w * x[bnd_vertex_[q]][c];
-      }
-      b_[R] = s;
-      diag_[R] = sys.diagonal[order_[R]];
-      inv_diag_[R] = 1.0 / diag_[R];
-      x_[R] = x[order_[R]];
-    }
-  }
-
-  /// Writes the solution into the free entries of x.
-  void store(Field<D>& x) const
-  {
-    for(std::size_t r = 0; r < order_.size(); ++r)
-      x[order_[r]] = x_[r];
-  }
-
-  /// One multicolour SOR sweep on the loaded system; returns the largest change.
-  double sor_sweep(double omega, int threads) { return sweep(x_, b_, omega, threads, true); }
-
-  /// Bytes one sweep must move at least: the pattern and values once, the
-  /// right-hand side and inverse diagonal once, the solution read and written.
-  double bytes_per_sweep() const
-  {
-    const double nf = double(order_.size()), nnz = double(col_.size());
-    return nnz * (sizeof(Index) + sizeof(double)) +
-           nf * (sizeof(Index) + sizeof(double) + D * sizeof(double) + 2.0 * D * sizeof(double));
-  }
-
-  /// Successive over-relaxation on the loaded system from the loaded start.
-  Solve_report solve_sor(const Solver_options& options)
-  {
-    check_options(options);
-    Solve_report report;
-    Stopping_test stop(options);
-    while(report.iterations < options.max_iterations) {
-      stop.before_next();
-      const double update = sor_sweep(options.relaxation_factor, options.threads);
-      ++report.iterations;
-      SPRING_MOTION_CHECK(std::isfinite(update), "the solver produced a non-finite value at sweep " << report.iterations);
-      if(stop.done(update)) {
-        report.converged = true;
-        break;
+          s[c] -= v * xj[c];
       }
     }
-    report.last_max_update = stop.last();
-    report.error_estimate = stop.estimate();
-    report.residual = scaled_residual(options.threads);
-    SPRING_MOTION_CHECK(std::isfinite(report.residual), "the solver produced a non-finite value");
-    return report;
+    return s;
   }
 
-  /// Conjugate gradients preconditioned by a symmetric multicolour
-  /// Gauss-Seidel sweep, from the loaded start.
-  Solve_report solve_conjugate_gradient(const Solver_options& options)
-  {
-    check_options(options);
-    const int threads = options.threads;
-    const int nt = team(threads);
-    Solve_report report;
-    const long nf = long(order_.size());
-    r_.resize(order_.size());
-    z_.resize(order_.size());
-    p_.resize(order_.size());
-    q_.resize(order_.size());
-    // r = b - A x
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long k = 0; k < nf; ++k) {
-      const Row y = apply(x_, std::size_t(k));
-      for(int c = 0; c < D; ++c)
-        r_[std::size_t(k)][c] = b_[std::size_t(k)][c] - y[c];
-    }
-    const double r_max = max_abs(r_, threads);
-    SPRING_MOTION_CHECK(std::isfinite(r_max), "the solver's initial residual is not finite");
-    Stopping_test stop(options, true);
-    const bool mg = options.preconditioner == Preconditioner::multigrid;
-    if(mg && r_max > 0 && nf > 0) {
-      const Csr_view fine{order_.size(), row_offsets_.data(), col_.data(), val_.data(), diag_.data()};
-      if(!multigrid_.built())
-        multigrid_.build(fine);
-      multigrid_.load(fine);
-    }
-    const auto precondition = [&] {
-      this->precondition(options.preconditioner_relaxation_factor, threads, mg && multigrid_.number_of_levels() > 0);
-    };
-    if(r_max > 0 && nf > 0) {
-      precondition();
-      copy(z_, p_, threads);
-      double rz = dot(r_, z_, threads);
-      while(report.iterations < options.max_iterations) {
-        stop.before_next();
-#pragma omp parallel for schedule(static) num_threads(nt)
-        for(long k = 0; k < nf; ++k) {
-          const Row y = apply(p_, std::size_t(k));
-          for(int c = 0; c < D; ++c)
-            q_[std::size_t(k)][c] = y[c];
-        }
-        const double pq = dot(p_, q_, threads);
-        if(!(pq > 0)) // p = 0: the residual vanished exactly
-          break;
-        const double alpha = rz / pq;
-        const double update = axpy_max(alpha, threads);
-        ++report.iterations;
-        SPRING_MOTION_CHECK(std::isfinite(update), "the solver produced a non-finite value at iteration "
-                                                       << report.iterations);
-        if(stop.done(update)) {
-          report.converged = true;
-          break;
-        }
-        precondition();
-        const double rz_new = dot(r_, z_, threads);
-        const double beta = rz_new / rz;
-        rz = rz_new;
-#pragma omp parallel for schedule(static) num_threads(nt)
-        for(long k = 0; k < nf; ++k)
-          for(int c = 0; c < D; ++c)
-            p_[std::size_t(k)][c] = z_[std::size_t(k)][c] + beta * p_[std::size_t(k)][c];
-      }
-    }
-    report.residual = scaled_residual(threads);
-    SPRING_MOTION_CHECK(std::isfinite(report.residual), "the solver produced a non-finite value");
-    if(!report.converged && report.iterations < options.max_iterations) // a vanishing recurrence residual
-      report.converged = residual_at_rounding_level(report.residual, max_abs(x_, threads)) || nf == 0 || r_max == 0;
-    report.last_max_update = stop.last();
-    report.error_estimate = report.converged && report.iterations == 0 ? 0 : stop.estimate();
-    return report;
-  }
-
-private:
-  static constexpr Index none = std::numeric_limits<Index>::max();
-
-  int team(int threads) const { return thread_count(threads, order_.size()); }
-
-  // (A x)_k = d_k x_k - sum_j w_kj x_j over free neighbours (constrained
-  // neighbours are in b)
+  // (A x)_k over the free vertices (constrained neighbours are in b)
+  template <bool B>
   Row apply(const std::vector<Row>& x, std::size_t k) const
   {
-    Row s{};
-    for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q) {
-      const double w = val_[q];
-      const Row& xj = x[col_[q]];
+    if constexpr(B) {
+      Row y = block_product<D>(&blocks_[k * DD], x[k]);
+      for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q) {
+        const Row t = block_product<D>(&blocks_[off_block(q) * DD], x[col_[q]]);
+        for(int c = 0; c < D; ++c)
+          y[c] += t[c];
+      }
+      return y;
+    } else {
+      Row s{};
+      for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q) {
+        const double v = val_[q];
+        const Row& xj = x[col_[q]];
+        for(int c = 0; c < D; ++c)
+          s[c] += v * xj[c];
+      }
+      Row y;
       for(int c = 0; c < D; ++c)
-        s[c] += w * xj[c];
+        y[c] = diag_[k] * x[k][c] + s[c];
+      return y;
     }
-    Row y;
-    for(int c = 0; c < D; ++c)
-      y[c] = diag_[k] * x[k][c] - s[c];
-    return y;
   }
 
   // Gauss-Seidel over the colours in order, rows in order within a block
   // (backward: all in reverse), the blocks of a colour in parallel: a block
   // reads only its own rows and rows of other colours, so any schedule gives
   // the same result. `track`: return the max change.
+  template <bool B>
   double sweep(std::vector<Row>& x, const std::vector<Row>& rhs, double omega, int threads, bool forward,
                bool track = true)
   {
@@ -352,16 +484,17 @@ private:
         const long rb = long(block_offsets_[std::size_t(bq)]), re = long(block_offsets_[std::size_t(bq) + 1]);
         for(long kk = 0; kk < re - rb; ++kk) {
           const std::size_t K = std::size_t(forward ? rb + kk : re - 1 - kk);
-          Row s = rhs[K];
-          for(Index q = row_offsets_[K]; q < row_offsets_[K + 1]; ++q) {
-            const double w = val_[q];
-            const Row& xj = x[col_[q]];
-            for(int c = 0; c < D; ++c)
-              s[c] += w * xj[c];
-          }
+          const Row s = off_residual<B>(x, rhs[K], K);
+          Row y;
+          if constexpr(B) // the block row's local solve D_K^{-1} s, relaxed
+            y = block_product<D>(&inv_diag_[K * DD], s);
           if(track)
             for(int c = 0; c < D; ++c) {
-              const double nv = (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
+              double nv;
+              if constexpr(B)
+                nv = (1 - omega) * x[K][c] + omega * y[c];
+              else
+                nv = (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
               const double d = std::abs(nv - x[K][c]);
               // a NaN must stick: !(d <= cm) holds for NaN, which becomes +inf
               if(!(d <= cm))
@@ -369,8 +502,12 @@ private:
               x[K][c] = nv;
             }
           else
-            for(int c = 0; c < D; ++c)
-              x[K][c] = omega == 1 ? s[c] * inv_diag_[K] : (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
+            for(int c = 0; c < D; ++c) {
+              if constexpr(B)
+                x[K][c] = omega == 1 ? y[c] : (1 - omega) * x[K][c] + omega * y[c];
+              else
+                x[K][c] = omega == 1 ? s[c] * inv_diag_[K] : (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
+            }
         }
       }
       sticky_max(m, cm);
@@ -378,12 +515,105 @@ private:
     return m;
   }
 
+  template <bool B>
+  Solve_report solve_sor(const Solver_options& options)
+  {
+    Solve_report report;
+    Stopping_test stop(options);
+    while(report.iterations < options.max_iterations) {
+      const double update = sweep<B>(x_, b_, options.relaxation_factor, options.threads, true);
+      ++report.iterations;
+      SPRING_MOTION_CHECK(std::isfinite(update), "the solver produced a non-finite value at sweep " << report.iterations);
+      if(stop.done(update)) {
+        report.converged = true;
+        break;
+      }
+    }
+    report.last_max_update = stop.last();
+    report.error_estimate = stop.estimate();
+    report.residual = scaled_residual<B>(options.threads);
+    SPRING_MOTION_CHECK(std::isfinite(report.residual), "the solver produced a non-finite value");
+    return report;
+  }
+
+  // Conjugate gradients preconditioned by a symmetric Gauss-Seidel sweep in
+  // the solver's order, or by one multigrid V-cycle, from the loaded start.
+  template <bool B>
+  Solve_report solve_conjugate_gradient(const Solver_options& options)
+  {
+    const int threads = options.threads;
+    const int nt = team(threads);
+    Solve_report report;
+    const long nf = long(order_.size());
+    r_.resize(order_.size());
+    z_.resize(order_.size());
+    p_.resize(order_.size());
+    q_.resize(order_.size());
+    // r = b - A x
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long k = 0; k < nf; ++k) {
+      const Row y = apply<B>(x_, std::size_t(k));
+      for(int c = 0; c < D; ++c)
+        r_[std::size_t(k)][c] = b_[std::size_t(k)][c] - y[c];
+    }
+    const double r_max = max_abs(r_, threads);
+    SPRING_MOTION_CHECK(std::isfinite(r_max), "the solver's initial residual is not finite");
+    Stopping_test stop(options);
+    const bool mg = options.preconditioner == Preconditioner::multigrid;
+    multigrid_.parameters.correction = options.multigrid_correction; // used per cycle only
+    if(mg && r_max > 0 && nf > 0) {
+      const Csr_view fine{order_.size(), row_offsets_.data(), col_.data(), values(), diagonal(), B};
+      if(!multigrid_.built())
+        multigrid_.build(fine);
+      multigrid_.load(fine);
+    }
+    const bool cycle = mg && multigrid_.number_of_levels() > 0;
+    if(r_max > 0 && nf > 0) {
+      precondition<B>(options.preconditioner_relaxation_factor, threads, cycle);
+      copy(z_, p_, threads);
+      double rz = dot(r_, z_, threads);
+      while(report.iterations < options.max_iterations) {
+#pragma omp parallel for schedule(static) num_threads(nt)
+        for(long k = 0; k < nf; ++k)
+          q_[std::size_t(k)] = apply<B>(p_, std::size_t(k));
+        const double pq = dot(p_, q_, threads);
+        if(!(pq > 0)) // p = 0: the residual vanished exactly
+          break;
+        const double alpha = rz / pq;
+        const double update = axpy_max(alpha, threads);
+        ++report.iterations;
+        SPRING_MOTION_CHECK(std::isfinite(update), "the solver produced a non-finite value at iteration "
+                                                       << report.iterations);
+        if(stop.done(update)) {
+          report.converged = true;
+          break;
+        }
+        precondition<B>(options.preconditioner_relaxation_factor, threads, cycle);
+        const double rz_new = dot(r_, z_, threads);
+        const double beta = rz_new / rz;
+        rz = rz_new;
+#pragma omp parallel for schedule(static) num_threads(nt)
+        for(long k = 0; k < nf; ++k)
+          for(int c = 0; c < D; ++c)
+            p_[std::size_t(k)][c] = z_[std::size_t(k)][c] + beta * p_[std::size_t(k)][c];
+      }
+    }
+    report.residual = scaled_residual<B>(threads);
+    SPRING_MOTION_CHECK(std::isfinite(report.residual), "the solver produced a non-finite value");
+    if(!report.converged && report.iterations < options.max_iterations) // a vanishing recurrence residual
+      report.converged = residual_at_rounding_level(report.residual, max_abs(x_, threads)) || nf == 0 || r_max == 0;
+    report.last_max_update = stop.last();
+    report.error_estimate = report.converged && report.iterations == 0 ? 0 : stop.estimate();
+    return report;
+  }
+
   // z = M^{-1} r from z = 0: a forward sweep on A z = r, with `multigrid`
   // the coarse correction of the residual left, and a backward sweep. Without
   // it M is the symmetric Gauss-Seidel (SSOR for omega != 1) splitting of A in
-  // the multicolour order; with it, one V-cycle. The same smoothing before
-  // and after, and a symmetric coarse cycle, keep M symmetric positive
-  // definite (omega in (0, 2)).
+  // the solver's order; with it, one V-cycle. The same smoothing before and
+  // after, and a symmetric coarse cycle, keep M symmetric positive definite
+  // (omega in (0, 2)).
+  template <bool B>
   void precondition(double omega, int threads, bool multigrid)
   {
     const int nt = team(threads);
@@ -391,13 +621,14 @@ private:
 #pragma omp parallel for schedule(static) num_threads(nt)
     for(long k = 0; k < nf; ++k)
       z_[std::size_t(k)] = Row{};
-    sweep(z_, r_, omega, threads, true, false);
+    sweep<B>(z_, r_, omega, threads, true, false);
     if(multigrid)
-      coarse_correction(threads);
-    sweep(z_, r_, omega, threads, false, false);
+      coarse_correction<B>(threads);
+    sweep<B>(z_, r_, omega, threads, false, false);
   }
 
   // z += correction P cycle(P^T (r - A z))
+  template <bool B>
   void coarse_correction(int threads)
   {
     const int nt = team(threads);
@@ -405,13 +636,13 @@ private:
     s_.resize(order_.size());
 #pragma omp parallel for schedule(static) num_threads(nt)
     for(long k = 0; k < nf; ++k) {
-      const Row y = apply(z_, std::size_t(k));
+      const Row y = apply<B>(z_, std::size_t(k));
       for(int c = 0; c < D; ++c)
         s_[std::size_t(k)][c] = r_[std::size_t(k)][c] - y[c];
     }
     multigrid_.restrict_from(s_);
     multigrid_.cycle();
-    const double a = multigrid_.correction;
+    const double a = multigrid_.parameters.correction;
 #pragma omp parallel for schedule(static) num_threads(nt)
     for(long k = 0; k < nf; ++k) {
       const Row& e = multigrid_.coarse_solution(multigrid_.parent(std::size_t(k)));
@@ -515,52 +746,48 @@ private:
         threads);
   }
 
-  // max over rows and components of |x_k - local solve_k|: d_k^{-1} |(b - A x)_k|
+  // max over rows and components of |x_k - local solve_k| = |D_k^{-1} (b - A x)_k|
+  template <bool B>
   double scaled_residual(int threads)
   {
     return chunked_reduce(
         [&](std::size_t b, std::size_t e) {
           double m = 0;
           for(std::size_t k = b; k < e; ++k) {
-            const Row y = apply(x_, k);
-            for(int c = 0; c < D; ++c)
-              sticky_max(m, std::abs((b_[k][c] - y[c]) * inv_diag_[k]));
+            const Row y = apply<B>(x_, k);
+            if constexpr(B) {
+              Row s;
+              for(int c = 0; c < D; ++c)
+                s[c] = b_[k][c] - y[c];
+              const Row t = block_product<D>(&inv_diag_[k * DD], s);
+              for(int c = 0; c < D; ++c)
+                sticky_max(m, std::abs(t[c]));
+            } else {
+              for(int c = 0; c < D; ++c)
+                sticky_max(m, std::abs((b_[k][c] - y[c]) * inv_diag_[k]));
+            }
           }
           return m;
         },
         sticky_combine, threads);
   }
 
-  bool built_ = false;
+  // the structure's key: what `needs_build` compares
+  bool built_ = false, block_ = false;
+  Vertex_ordering ordering_ = Vertex_ordering::block_multicolour;
+  std::size_t block_rows_ = 0;
+  Preconditioner preconditioner_ = Preconditioner::multigrid;
+  std::size_t network_entries_ = 0, network_elements_ = 0;
+  std::vector<Index> free_;
+
   std::vector<Index> order_, block_offsets_, colour_offsets_; // colour_offsets_: into the blocks
-  std::vector<Index> row_offsets_, col_, src_;
-  std::vector<Index> bnd_offsets_, bnd_vertex_, bnd_src_;
-  std::vector<double> val_, diag_, inv_diag_, partial_;
+  std::vector<Index> row_offsets_, col_, edge_;
+  std::vector<Index> bnd_offsets_, bnd_vertex_, bnd_edge_;
+  std::vector<Index> elements_, element_dest_;
+  std::vector<double> val_, bnd_val_, diag_, inv_diag_, blocks_, partial_;
   std::vector<Row> b_, x_, r_, z_, p_, q_, s_;
   Aggregation_multigrid<D> multigrid_;
-
-public:
-  /// The multigrid levels of the last multigrid-preconditioned solve.
-  const Aggregation_multigrid<D>& multigrid() const { return multigrid_; }
-  Aggregation_multigrid<D>& multigrid() { return multigrid_; }
 };
-
-/// Solves a scalar system through `fs` (built on first use for these free
-/// vertices), block systems by the generic solvers.
-template <int D>
-Solve_report solve(const Spring_network<D>& net, const Linear_system<D>& sys, const std::vector<Index>& free_vertices,
-                   Field<D>& x, const Solver_options& options, Free_system<D>& fs)
-{
-  if(sys.block || options.ordering == Vertex_ordering::natural)
-    return solve(net, sys, free_vertices, x, options);
-  if(!fs.built())
-    fs.build(net, free_vertices, options.ordering == Vertex_ordering::multicolour ? 1 : 0);
-  fs.load(sys, x, options.threads);
-  const Solve_report r = options.method == Solver_method::sor ? fs.solve_sor(options)
-                                                             : fs.solve_conjugate_gradient(options);
-  fs.store(x);
-  return r;
-}
 
 } // namespace internal
 } // namespace spring_motion

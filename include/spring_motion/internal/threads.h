@@ -26,18 +26,19 @@ inline int thread_count(int requested)
 /// Loops over fewer items than this run on one thread: a parallel region
 /// costs more than such a loop, and far more when the cores are shared with
 /// other processes (a descheduled thread stalls the region's barrier). Results
-/// never depend on it (every parallel loop is deterministic); tests lower it to
-/// 0 to exercise the parallel paths on small meshes.
-inline std::size_t& parallel_threshold()
-{
-  static std::size_t t = 16384;
-  return t;
-}
+/// never depend on it (every parallel loop is deterministic). A constant of
+/// the build: a test program that must exercise the parallel paths on small
+/// meshes defines SPRING_MOTION_PARALLEL_THRESHOLD (to 0) before including
+/// the library.
+#ifndef SPRING_MOTION_PARALLEL_THRESHOLD
+#define SPRING_MOTION_PARALLEL_THRESHOLD 16384
+#endif
+constexpr std::size_t parallel_threshold = SPRING_MOTION_PARALLEL_THRESHOLD;
 
 /// The thread count for a loop over `items` items.
 inline int thread_count(int requested, std::size_t items)
 {
-  return items < parallel_threshold() ? 1 : thread_count(requested);
+  return items < parallel_threshold ? 1 : thread_count(requested);
 }
 
 /// The thread count for a loop over `items` items that each cost as much as
@@ -45,7 +46,7 @@ inline int thread_count(int requested, std::size_t items)
 /// loop pays for its parallel region at a sixteenth of the items.
 inline int heavy_thread_count(int requested, std::size_t items)
 {
-  return items * 16 < parallel_threshold() ? 1 : thread_count(requested);
+  return items * 16 < parallel_threshold ? 1 : thread_count(requested);
 }
 
 } // namespace internal

@@ -1,0 +1,465 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_NETWORK_DEFORMER_H
+#define SPRING_MOTION_NETWORK_DEFORMER_H
+
+#include <spring_motion/Deform_options.h>
+#include <spring_motion/Deform_report.h>
+#include <spring_motion/Error.h>
+#include <spring_motion/Solver_options.h>
+#include <spring_motion/Spring_network.h>
+#include <spring_motion/Step_system_view.h>
+#include <spring_motion/Vertex_role.h>
+#include <spring_motion/internal/angles.h>
+#include <spring_motion/internal/assemble.h>
+#include <spring_motion/internal/free_system.h>
+#include <spring_motion/internal/threads.h>
+#include <spring_motion/motion/Motion_description.h>
+#include <spring_motion/skewness.h>
+#include <spring_motion/validity.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace spring_motion {
+
+/// A spring network with vertex roles and the current positions: the
+/// stateful side of `deform()`, for a flow solver that moves its mesh step
+/// by step. Construction checks the roles: at least one moving vertex, and
+/// every free vertex connected through free vertices to a constrained one
+/// (otherwise the system is singular).
+template <int D>
+class Network_deformer
+{
+public:
+  using Point = std::array<double, D>;
+
+  Network_deformer(Spring_network<D> network, std::vector<Vertex_role> roles)
+      : net_(std::move(network)), roles_(std::move(roles))
+  {
+    const std::size_t n = net_.number_of_vertices();
+    SPRING_MOTION_CHECK(roles_.size() == n, "got " << roles_.size() << " vertex roles for " << n << " vertices");
+    positions_ = net_.points;
+    record_ = record_orientations(net_, positions_);
+    std::vector<char> used(n, 0);
+    for(const auto& e : net_.elements)
+      for(Index v : e)
+        used[v] = 1;
+    for(Index i = 0; i < n; ++i) {
+      if(!used[i])
+        continue; // a vertex no element uses takes no part
+      if(roles_[i] == Vertex_role::free)
+        free_.push_back(i);
+      else
+        (roles_[i] == Vertex_role::moving ? moving_ : fixed_).push_back(i);
+    }
+    SPRING_MOTION_CHECK(!moving_.empty(), "no vertex is moving: the set of moving vertices is empty");
+    const std::vector<Index> unreached = undetermined_vertices(net_, roles_);
+    SPRING_MOTION_CHECK(unreached.empty(), unreached.size() << " free vertices (for instance vertex "
+                                                            << (unreached.empty() ? 0 : unreached.front())
+                                                            << ") are connected to no constrained vertex: "
+                                                               "their displacement is undetermined (singular system)");
+    initial_measure_.resize(net_.number_of_elements());
+    touches_moving_.assign(net_.number_of_elements(), 0);
+    for(std::size_t t = 0; t < net_.number_of_elements(); ++t) {
+      initial_measure_[t] = scaled_measure(positions_, t);
+      for(Index v : net_.elements[t])
+        if(roles_[v] == Vertex_role::moving)
+          touches_moving_[t] = 1;
+    }
+    increment_.assign(n, Point{});
+    previous_increment_.assign(n, Point{});
+  }
+
+  const Spring_network<D>& network() const { return net_; }
+  const std::vector<Vertex_role>& roles() const { return roles_; }
+  const std::vector<Point>& positions() const { return positions_; }
+  const Orientation_record& orientation_record() const { return record_; }
+  /// elements with at least one moving vertex
+  bool touches_moving(std::size_t element) const { return touches_moving_[element] != 0; }
+  std::size_t number_of_moving_vertices() const { return moving_.size(); }
+  std::size_t number_of_fixed_vertices() const { return fixed_.size(); }
+  double fraction() const { return t_; }
+
+  /// Called, when set, with each step's linear system just before it is
+  /// solved (rows in the solver's order, right-hand side, initial iterate):
+  /// for benchmarks and diagnostics that re-solve the very same systems.
+  std::function<void(const Step_system_view<D>&)> system_observer;
+
+  /// The moving vertices, in the order `move()` takes their displacements.
+  const std::vector<Index>& moving_vertices() const { return moving_; }
+
+  /// Back to the initial positions at t = 0, as after construction (the
+  /// warm-start history is cleared; the solver state is kept and rebuilt
+  /// only if a later run needs other options).
+  void reset()
+  {
+    positions_ = net_.points;
+    increment_.assign(net_.number_of_vertices(), Point{});
+    previous_increment_.assign(net_.number_of_vertices(), Point{});
+    history_ = History{};
+    t_ = 0;
+    moves_ = 0;
+    last_inverted_.clear();
+  }
+
+  /// Runs the whole motion from the current state (t = 0 for a new deformer).
+  template <class Motion, class Model, class Visitor = Default_deform_visitor>
+  Deform_report run(const Motion& motion, const Model& model, const Deform_options& options = {},
+                    Visitor visitor = {})
+  {
+    const auto start = Clock::now();
+    SPRING_MOTION_CHECK(options.number_of_steps > 0, "number_of_steps must be positive");
+    Deform_report rep;
+    rep.dimension = D;
+    rep.vertices = net_.number_of_vertices();
+    rep.elements = net_.number_of_elements();
+    rep.moving_vertices = moving_.size();
+    rep.fixed_vertices = fixed_.size();
+    rep.model = internal::describe_model(model, D);
+    rep.motion = internal::describe_motion(motion);
+    rep.number_of_steps = options.number_of_steps;
+    rep.solver = options.solver;
+    visitor.on_start(rep);
+    const std::size_t n = options.number_of_steps;
+    rep.completed = true;
+    for(std::size_t i = 1; i <= n; ++i) {
+      Step_report s;
+      s.step = i;
+      const double target = double(i) / double(n);
+      Attempt failed;
+      const auto place = [&](std::size_t k, double t) { return motion(net_.points[moving_[k]], t); };
+      const bool ok = advance(place, model, options, target, options.max_substep_halvings, s, failed);
+      s.fraction = ok ? target : t_;
+      s.angle_deg = internal::motion_angle_deg(motion, target);
+      rep.converged = rep.converged && s.converged;
+      if(!ok) {
+        s.inverted = failed.inverted.size();
+        rep.steps.push_back(s);
+        Invalid_step inv;
+        inv.step = i;
+        inv.fraction = target;
+        inv.angle_deg = s.angle_deg;
+        inv.elements = std::move(failed.inverted);
+        rep.first_invalid = std::move(inv);
+        rep.completed = false;
+        visitor.on_step(rep.steps.back());
+        break;
+      }
+      if(options.quality_every_step) {
+        const auto q0 = Clock::now();
+        step_quality(s, options.solver.threads);
+        s.seconds_check += seconds_since(q0);
+      }
+      rep.steps.push_back(s);
+      visitor.on_step(rep.steps.back());
+    }
+    rep.final_fraction = t_;
+    rep.final_angle_deg = internal::motion_angle_deg(motion, t_);
+    const auto r = element_skewness(net_, positions_, options.solver.threads);
+    rep.quality_all = skewness_histogram(r, [](std::size_t) { return true; });
+    rep.quality_moving = skewness_histogram(r, [&](std::size_t t) { return touches_moving_[t] != 0; });
+    rep.min_size_ratio = min_size_ratio(options.solver.threads);
+    rep.max_size_ratio = max_size_ratio(options.solver.threads);
+    rep.seconds_total = seconds_since(start);
+    return rep;
+  }
+
+  /// One time step of a flow solver's mesh motion: moving vertex
+  /// moving_vertices()[k] goes to its INITIAL position plus displacement[k],
+  /// fixed vertices stay, and the free vertices follow by the spring analogy
+  /// with `model` (given per call, so that it may change between steps).
+  /// Every element is checked exactly; a step that inverts one is retried in
+  /// 2, 4, ... substeps up to options.max_substep_halvings (the moving
+  /// vertices then move linearly between their last and new positions).
+  /// options.number_of_steps is not used: one call is one step.
+  ///
+  /// An invalid step does not throw: the state stays at the last valid
+  /// positions, and the returned report says so (`inverted` > 0, the
+  /// elements in `last_inverted_elements()`). The report's `step` counts the
+  /// calls; `fraction` is the number of accepted moves. Calls continue the
+  /// warm start of the previous ones; do not mix them with run() without a
+  /// reset() in between.
+  template <class Model>
+  Step_report move(const std::vector<Point>& displacement, const Model& model, const Deform_options& options = {})
+  {
+    SPRING_MOTION_CHECK(displacement.size() == moving_.size(), "move() got " << displacement.size()
+                                                                             << " displacements for "
+                                                                             << moving_.size() << " moving vertices");
+    move_start_.resize(moving_.size());
+    move_end_.resize(moving_.size());
+    for(std::size_t k = 0; k < moving_.size(); ++k) {
+      const Index i = moving_[k];
+      move_start_[k] = positions_[i];
+      for(int c = 0; c < D; ++c) {
+        move_end_[k][c] = net_.points[i][c] + displacement[k][c];
+        SPRING_MOTION_VERTEX_CHECK(std::isfinite(move_end_[k][c]), i,
+                                   "move(): non-finite displacement for moving vertex " << i);
+      }
+    }
+    const double t0 = t_, target = t_ + 1;
+    // linear between the last and the new positions, exactly the new ones at the end
+    const auto place = [&](std::size_t k, double t) {
+      if(t == target)
+        return move_end_[k];
+      Point q;
+      for(int c = 0; c < D; ++c)
+        q[c] = move_start_[k][c] + (t - t0) * (move_end_[k][c] - move_start_[k][c]);
+      return q;
+    };
+    Step_report s;
+    s.step = ++moves_;
+    Attempt failed;
+    const bool ok = advance(place, model, options, target, options.max_substep_halvings, s, failed);
+    s.fraction = t_;
+    s.inverted = ok ? 0 : failed.inverted.size();
+    last_inverted_ = ok ? std::vector<std::size_t>{} : std::move(failed.inverted);
+    if(ok && options.quality_every_step) {
+      const auto q0 = Clock::now();
+      step_quality(s, options.solver.threads);
+      s.seconds_check += seconds_since(q0);
+    }
+    return s;
+  }
+
+  /// The elements the last rejected move() inverted (empty after a valid one).
+  const std::vector<std::size_t>& last_inverted_elements() const { return last_inverted_; }
+
+  /// min over elements of (current measure / initial measure)
+  double min_size_ratio(int threads = 0) const
+  {
+    const long m = long(net_.number_of_elements());
+    double mn = std::numeric_limits<double>::infinity();
+#pragma omp parallel for reduction(min : mn) schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
+    for(long t = 0; t < m; ++t)
+      mn = std::min(mn, scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)]);
+    return mn;
+  }
+
+  /// max over elements of (current measure / initial measure)
+  double max_size_ratio(int threads = 0) const
+  {
+    const long m = long(net_.number_of_elements());
+    double mx = -std::numeric_limits<double>::infinity();
+#pragma omp parallel for reduction(max : mx) schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
+    for(long t = 0; t < m; ++t)
+      mx = std::max(mx, scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)]);
+    return mx;
+  }
+
+private:
+  using Clock = std::chrono::steady_clock;
+  static double seconds_since(Clock::time_point t0)
+  {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+  }
+
+  // The element's signed measure with coordinates scaled by the power of two
+  // nearest 1/longest edge: the scaling is exact, so every ratio of measures
+  // is bitwise unchanged, and a tiny mesh's measures do not underflow to 0
+  // (which made min_size_ratio 0/0).
+  double scaled_measure(const std::vector<Point>& x, std::size_t t) const
+  {
+    auto p = internal::element_points<D>(net_.elements, x, t);
+    const int e = -std::ilogb(net_.longest_initial_edge);
+    for(auto& q : p)
+      for(auto& c : q)
+        c = std::ldexp(c, e);
+    return internal::signed_measure(p);
+  }
+
+  void step_quality(Step_report& s, int threads) const
+  {
+    const auto r = element_skewness(net_, positions_, threads);
+    s.max_skewness_all = *std::max_element(r.begin(), r.end());
+    s.max_skewness_moving = 0;
+    for(std::size_t t = 0; t < r.size(); ++t)
+      if(touches_moving_[t])
+        s.max_skewness_moving = std::max(s.max_skewness_moving, r[t]);
+    s.min_size_ratio = min_size_ratio(threads);
+    s.max_size_ratio = max_size_ratio(threads);
+  }
+
+  struct Attempt
+  {
+    std::vector<std::size_t> inverted;
+  };
+
+  // Moves from the current t to `target`. When an increment inverts an
+  // element, the whole step is retried from the state at its start as 2, 4,
+  // ... 2^halvings equal substeps (stiffness recomputed at each). On failure
+  // the state is the one at the start of the step. The solver figures of `s`
+  // describe the accepted attempt (or, on failure, the last one tried); the
+  // attempts rejected before it are counted in s.rejected_attempts and their
+  // time stays in s's timings.
+  // `place(k, t)`: the position of moving vertex moving_[k] at fraction t.
+  template <class Place, class Model>
+  bool advance(const Place& place, const Model& model, const Deform_options& options, double target,
+               std::size_t halvings, Step_report& s, Attempt& failed)
+  {
+    const double t_start = t_;
+    const auto saved_positions = positions_;
+    const auto saved_increment = increment_;
+    const auto saved_previous = previous_increment_;
+    const History saved_history = history_;
+    for(std::size_t level = 0;; ++level) {
+      const std::size_t parts = std::size_t(1) << level;
+      s.substeps = 0;
+      s.iterations = 0;
+      s.converged = true;
+      s.max_update = s.residual = s.error_estimate = 0;
+      bool ok = true;
+      for(std::size_t k = 1; k <= parts && ok; ++k) {
+        const double t = k == parts ? target : t_start + (target - t_start) * double(k) / double(parts);
+        ok = try_increment(place, model, options, t, s, failed);
+      }
+      if(ok)
+        return true;
+      positions_ = saved_positions;
+      increment_ = saved_increment;
+      previous_increment_ = saved_previous;
+      history_ = saved_history;
+      t_ = t_start;
+      if(level == halvings) {
+        s.substeps = parts; // the finest division tried
+        return false;
+      }
+      ++s.rejected_attempts;
+    }
+  }
+
+  template <class Place, class Model>
+  bool try_increment(const Place& place, const Model& model, const Deform_options& options, double target,
+                     Step_report& s, Attempt& failed)
+  {
+    constexpr bool element_model = internal::Is_element_model<Model, D>::value;
+    const int threads = options.solver.threads;
+    const std::size_t n = net_.number_of_vertices();
+    auto t0 = Clock::now();
+    delta_.assign(n, Point{});
+    if(options.solver.warm_start) {
+      const double h = target - t_, m = 0.5 * (target + t_);
+      if(options.solver.extrapolate && history_.count >= 2 && history_.m1 > history_.m2) {
+        // the increment per unit of motion fraction, extrapolated linearly
+        // from the last two steps to this step's midpoint
+        const double e = (m - history_.m1) / (history_.m1 - history_.m2);
+        const double a = h * (1 + e) / history_.h1, b = h * e / history_.h2;
+        for(Index i : free_)
+          for(int c = 0; c < D; ++c)
+            delta_[i][c] = a * increment_[i][c] - b * previous_increment_[i][c];
+      } else
+        for(Index i : free_)
+          delta_[i] = increment_[i];
+    }
+    // the motion is evaluated once per moving vertex and attempt
+    moving_targets_.resize(moving_.size());
+    for(std::size_t k = 0; k < moving_.size(); ++k) {
+      const Index i = moving_[k];
+      const Point q = place(k, target);
+      for(int c = 0; c < D; ++c) {
+        SPRING_MOTION_VERTEX_CHECK(std::isfinite(q[c]), i, "the motion gave a non-finite position for vertex "
+                                                               << i << " at motion fraction " << target);
+        delta_[i][c] = q[c] - positions_[i][c];
+      }
+      moving_targets_[k] = q;
+    }
+    for(Index i : fixed_)
+      for(int c = 0; c < D; ++c)
+        delta_[i][c] = net_.points[i][c] - positions_[i][c];
+    Stiffness_context ctx{D, net_.longest_initial_edge};
+    internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, angle_scratch_, threads);
+    if(solver_.needs_build(net_, free_, element_model, options.solver))
+      solver_.build(net_, free_, element_model, options.solver);
+    if constexpr(element_model)
+      internal::assemble_block_system(net_, positions_, model, stiffness_, solver_, threads);
+    else
+      solver_.load_scalar(net_, stiffness_, threads);
+    solver_.set_start(delta_, threads);
+    s.seconds_stiffness += seconds_since(t0);
+
+    if(system_observer) {
+      Step_system_view<D> view;
+      view.block = solver_.block();
+      view.rows = solver_.rows();
+      view.vertices = solver_.order().data();
+      view.row_offsets = solver_.row_offsets().data();
+      view.columns = solver_.columns().data();
+      view.values = solver_.values();
+      view.diagonal = solver_.diagonal();
+      view.rhs = solver_.rhs().data();
+      view.initial = solver_.solution().data();
+      system_observer(view);
+    }
+    t0 = Clock::now();
+    const Solve_report sr = solver_.solve(options.solver);
+    solver_.store(delta_);
+    s.seconds_solve += seconds_since(t0);
+    s.iterations += sr.iterations;
+    s.converged = s.converged && sr.converged;
+    s.max_update = std::max(s.max_update, sr.last_max_update);
+    s.residual = std::max(s.residual, sr.residual);
+    s.error_estimate = std::max(s.error_estimate, sr.error_estimate);
+
+    t0 = Clock::now();
+    candidate_ = positions_;
+    for(Index i : free_)
+      for(int c = 0; c < D; ++c)
+        candidate_[i][c] += delta_[i][c];
+    // constrained vertices land exactly on their prescribed positions
+    for(std::size_t k = 0; k < moving_.size(); ++k)
+      candidate_[moving_[k]] = moving_targets_[k];
+    for(Index i : fixed_)
+      candidate_[i] = net_.points[i];
+    failed.inverted.clear();
+    find_inverted_elements(net_, candidate_, record_, std::back_inserter(failed.inverted), threads);
+    s.seconds_check += seconds_since(t0);
+    if(!failed.inverted.empty())
+      return false;
+    positions_.swap(candidate_);
+    previous_increment_.swap(increment_);
+    for(Index i : free_)
+      increment_[i] = delta_[i];
+    history_.h2 = history_.h1;
+    history_.m2 = history_.m1;
+    history_.h1 = target - t_;
+    history_.m1 = 0.5 * (target + t_);
+    ++history_.count;
+    t_ = target;
+    ++s.substeps;
+    return true;
+  }
+
+  Spring_network<D> net_;
+  std::vector<Vertex_role> roles_;
+  std::vector<Index> free_, moving_, fixed_;
+  std::vector<Point> positions_, increment_, previous_increment_;
+  // the fraction intervals (h) and their midpoints (m) of the last two accepted increments
+  struct History
+  {
+    double h1 = 0, h2 = 0, m1 = 0, m2 = 0;
+    std::size_t count = 0;
+  } history_;
+  Orientation_record record_;
+  std::vector<double> initial_measure_;
+  std::vector<char> touches_moving_;
+  std::vector<double> stiffness_, angle_scratch_;
+  // the solver state: ordering, pattern and multigrid aggregates, rebuilt
+  // when the options they depend on change (Free_system::needs_build)
+  internal::Free_system<D> solver_;
+  // scratch of every attempt, kept to avoid allocating in the step loop
+  std::vector<Point> delta_, candidate_, moving_targets_;
+  // move(): the moving vertices' positions before and after the call
+  std::vector<Point> move_start_, move_end_;
+  std::vector<std::size_t> last_inverted_;
+  std::size_t moves_ = 0;
+  double t_ = 0;
+};
+
+} // namespace spring_motion
+
+#endif

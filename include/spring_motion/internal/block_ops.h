@@ -1,0 +1,87 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_INTERNAL_BLOCK_OPS_H
+#define SPRING_MOTION_INTERNAL_BLOCK_OPS_H
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace spring_motion {
+namespace internal {
+
+/// The inverse of the D x D row-major block m, or false when m is singular
+/// or not finite: |det m| must exceed a rounding error of the product of its
+/// row norms (Hadamard's bound on |det m|), so the test does not depend on
+/// the scale of the stiffness.
+template <int D>
+inline bool invert_block(const double* m, double* r)
+{
+  double det, bound = 1;
+  for(int i = 0; i < D; ++i) {
+    double s = 0;
+    for(int j = 0; j < D; ++j)
+      s += m[i * D + j] * m[i * D + j];
+    bound *= std::sqrt(s);
+  }
+  if constexpr(D == 2) {
+    det = m[0] * m[3] - m[1] * m[2];
+    if(!(std::isfinite(det) && std::abs(det) > 64 * std::numeric_limits<double>::epsilon() * bound))
+      return false;
+    const double v[4] = {m[3] / det, -m[1] / det, -m[2] / det, m[0] / det};
+    for(int k = 0; k < 4; ++k)
+      r[k] = v[k];
+  } else {
+    const double c00 = m[4] * m[8] - m[5] * m[7], c01 = m[5] * m[6] - m[3] * m[8], c02 = m[3] * m[7] - m[4] * m[6];
+    det = m[0] * c00 + m[1] * c01 + m[2] * c02;
+    if(!(std::isfinite(det) && std::abs(det) > 64 * std::numeric_limits<double>::epsilon() * bound))
+      return false;
+    const double v[9] = {c00 / det, (m[2] * m[7] - m[1] * m[8]) / det, (m[1] * m[5] - m[2] * m[4]) / det,
+                         c01 / det, (m[0] * m[8] - m[2] * m[6]) / det, (m[2] * m[3] - m[0] * m[5]) / det,
+                         c02 / det, (m[1] * m[6] - m[0] * m[7]) / det, (m[0] * m[4] - m[1] * m[3]) / det};
+    for(int k = 0; k < 9; ++k)
+      r[k] = v[k];
+  }
+  return std::isfinite(bound);
+}
+
+/// Frobenius norm of a D x D block: the strength of a block coupling.
+template <int D>
+inline double block_norm(const double* m)
+{
+  double s = 0;
+  for(int k = 0; k < D * D; ++k)
+    s += m[k] * m[k];
+  return std::sqrt(s);
+}
+
+/// s -= M x for a D x D block M.
+template <int D>
+inline void subtract_block_product(std::array<double, D>& s, const double* M, const std::array<double, D>& x)
+{
+  for(int r = 0; r < D; ++r)
+    for(int c = 0; c < D; ++c)
+      s[r] -= M[r * D + c] * x[c];
+}
+
+/// M x for a D x D block M.
+template <int D>
+inline std::array<double, D> block_product(const double* M, const std::array<double, D>& x)
+{
+  std::array<double, D> y{};
+  for(int r = 0; r < D; ++r)
+    for(int c = 0; c < D; ++c)
+      y[r] += M[r * D + c] * x[c];
+  return y;
+}
+
+/// A max that a NaN sticks to, so a NaN can never pass for convergence.
+inline void sticky_max(double& m, double v)
+{
+  if(!(v <= m))
+    m = v;
+}
+
+} // namespace internal
+} // namespace spring_motion
+
+#endif

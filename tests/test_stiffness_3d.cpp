@@ -80,7 +80,7 @@ TEST_CASE("3D stiffness: Blom, k = (1/l) 1/theta with the dihedral angle", "[sti
 {
   Corner c;
   const auto k = c.stiffness(Blom_semi_torsional_stiffness{});
-  CHECK(close(k[c.edge(0, 1)], 2 / M_PI));
+  CHECK(close(k[c.edge(0, 1)], 2 / internal::pi));
   CHECK(close(k[c.edge(1, 2)], 1 / (std::sqrt(2.0) * std::acos(1 / std::sqrt(3.0)))));
 }
 

@@ -4,6 +4,7 @@
 
 #include <spring_motion/Error.h>
 #include <spring_motion/internal/angles.h>
+#include <spring_motion/internal/capped_math.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
 
 #include <array>

@@ -57,7 +57,8 @@ struct Model_description
 ///                   const Stiffness_context&) const;   // >= 0 and finite
 /// Model_description description(int dimension) const;               // optional
 /// \endcode
-/// Concept `ElementStiffnessModel` (torsional springs) refines it with
+/// Concept `ElementStiffnessModel` (torsional springs, ball-vertex springs)
+/// refines it with
 /// \code
 /// // adds the element's (D+1)D x (D+1)D stiffness matrix (row-major) to K
 /// void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, double* K) const;

@@ -32,7 +32,8 @@ int main(int argc, char** argv)
   demo::Options options;
   options.program = "naca0012_pitch_2d";
   options.amplitude = 45;
-  options.models = sm::model_names();
+  // the paper's comparison; --models picks any name of sm::model_table()
+  options.models = {"lineal", "lineal_p2", "blom", "zeng_ethier", "grid_scaled", "torsional"};
   std::string mesh = "coarse";
   demo::parse(argc, argv, options,
               "usage: naca0012_pitch_2d [--mesh coarse|fine] [--amplitude DEG] [--steps N]\n"

@@ -208,11 +208,8 @@ TEST_CASE("api misuse: options out of range", "[errors][api]")
                       Contains("unknown stiffness model 'springy'") && Contains("grid_scaled"));
 }
 
-TEST_CASE("api misuse: the torsional model in 3D is refused", "[errors][api]")
+TEST_CASE("api misuse: torsional springs do not combine with ball-vertex springs", "[errors][api]")
 {
-  Indexed_mesh<3> tet;
-  tet.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  tet.elements = {{0, 1, 2, 3}};
-  REQUIRE_THROWS_WITH(deform(tet, All_boundary_moving{}, Translation_motion<3>{{0.1, 0, 0}}, Torsional_stiffness{}),
-                      Contains("torsional model is implemented in 2D only"));
+  REQUIRE_THROWS_WITH(with_model("torsional+ball_vertex", [](const auto&) { return 0; }),
+                      Contains("combine with an edge model only") && Contains("grid_scaled+ball_vertex"));
 }

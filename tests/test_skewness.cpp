@@ -27,9 +27,9 @@ TEST_CASE("equiangle_skewness: hand-computed triangles (2D Eq. 13)", "[skewness]
         Approx(0.25).epsilon(1e-13));
   // obtuse isosceles (0,0), (2,0), (1,1/2): base angles atan(1/2), apex
   // 180 - 2 atan(1/2); both terms equal 1 - atan(1/2)/(pi/3)
-  CHECK(equiangle_skewness(P2{0, 0}, P2{2, 0}, P2{1, 0.5}) == Approx(1 - std::atan(0.5) / (M_PI / 3)).epsilon(tol));
+  CHECK(equiangle_skewness(P2{0, 0}, P2{2, 0}, P2{1, 0.5}) == Approx(1 - std::atan(0.5) / (internal::pi / 3)).epsilon(tol));
   // 3-4-5: largest angle 90 gives 1/4, smallest atan(3/4) gives 1 - atan(3/4)/(pi/3) = 0.385...
-  CHECK(equiangle_skewness(P2{0, 0}, P2{4, 0}, P2{0, 3}) == Approx(1 - std::atan(0.75) / (M_PI / 3)).epsilon(tol));
+  CHECK(equiangle_skewness(P2{0, 0}, P2{4, 0}, P2{0, 3}) == Approx(1 - std::atan(0.75) / (internal::pi / 3)).epsilon(tol));
 }
 
 TEST_CASE("equiangle_skewness: degenerate triangles give 1", "[skewness]")
@@ -44,6 +44,24 @@ TEST_CASE("equiangle_skewness: degenerate triangles give 1", "[skewness]")
   const double r = equiangle_skewness(P2{0, 0}, P2{2, 0}, P2{1, 1e-9});
   CHECK(r < 1.0);
   CHECK(r > 1 - 1e-8);
+}
+
+TEST_CASE("equiangle_skewness: an angle that is not a number gives 1, never a perfect 0", "[skewness]")
+{
+  const double nan = std::nan("");
+  // wherever the NaN sits (min/max compare false against it)
+  for(int k = 0; k < 3; ++k) {
+    std::array<double, 3> a{internal::pi / 3, internal::pi / 3, internal::pi / 3};
+    a[std::size_t(k)] = nan;
+    CHECK(equiangle_skewness_from_angles(a.data(), 3, 2) == 1.0);
+  }
+  std::array<double, 6> d;
+  d.fill(std::acos(1.0 / 3.0));
+  d[5] = nan;
+  CHECK(equiangle_skewness_from_angles(d.data(), 6, 3) == 1.0);
+  // through the geometry: a vertex with a NaN coordinate
+  CHECK(equiangle_skewness(P2{0, 0}, P2{1, 0}, P2{nan, 0.5}) == 1.0);
+  CHECK(equiangle_skewness(P3{1, 1, 1}, P3{1, -1, -1}, P3{-1, 1, -1}, P3{-1, -1, nan}) == 1.0);
 }
 
 TEST_CASE("equiangle_skewness: tetrahedra (3D, dihedral angles)", "[skewness]")

@@ -58,7 +58,7 @@ void check_values(const std::map<Edge_key, double>& got, const std::map<Edge_key
   }
 }
 
-const double pi = M_PI;
+const double pi = internal::pi;
 
 // Equilateral triangle of side 2: every edge has l = 2 and one facing angle
 // pi/3 (sin^2 = 3/4, 1/sin^2 = 4/3); l0 = 2.
@@ -164,6 +164,22 @@ TEST_CASE("Grid_scaled_stiffness: k = (l0/l)(1/l^2 + (sum 1/sin^2 theta)^4) on h
                                                            {{2, 3}, 17 * s2},
                                                            {{0, 3}, 17 * s2},
                                                            {{0, 2}, 16.5}});
+  SECTION("explicit exponents are used as given, 0 included (no sentinel for the paper's values)")
+  {
+    Grid_scaled_stiffness given;
+    given.alpha = 0.0; // 1/l^0 = 1
+    given.beta = 1.0;
+    CHECK(given.alpha_for(2) == 0.0);
+    CHECK(given.alpha_for(3) == 0.0);
+    CHECK(given.beta_for(3) == 1.0);
+    // equilateral (lambda = 1): 1 + 4/3
+    const double v = 1 + 4.0 / 3;
+    check_values(edge_stiffness(equilateral, one_triangle, given), {{{0, 1}, v}, {{0, 2}, v}, {{1, 2}, v}});
+    CHECK(Grid_scaled_stiffness::paper_alpha(2) == 2.0);
+    CHECK(Grid_scaled_stiffness::paper_beta(2) == 4.0);
+    CHECK(Grid_scaled_stiffness::paper_alpha(3) == 1.0);
+    CHECK(Grid_scaled_stiffness::paper_beta(3) == 3.0);
+  }
   SECTION("reference length: lengths are measured in units of L_ref")
   {
     Grid_scaled_stiffness scaled;

@@ -80,7 +80,7 @@ TEST_CASE("3D stiffness: Blom, k = (1/l) 1/theta with the dihedral angle", "[sti
 {
   Corner c;
   const auto k = c.stiffness(Blom_semi_torsional_stiffness{});
-  CHECK(close(k[c.edge(0, 1)], 2 / M_PI));
+  CHECK(close(k[c.edge(0, 1)], 2 / internal::pi));
   CHECK(close(k[c.edge(1, 2)], 1 / (std::sqrt(2.0) * std::acos(1 / std::sqrt(3.0)))));
 }
 
@@ -113,8 +113,10 @@ TEST_CASE("3D stiffness: grid-scaled, alpha = 1, beta = 3, dihedral angles, lamb
   CHECK(close(c.stiffness(model)[c.edge(0, 1)], std::sqrt(2.0) * (2 + 1)));
 }
 
-TEST_CASE("3D stiffness: the torsional model refuses 3D instead of degrading to lineal springs", "[stiffness][3d]")
+TEST_CASE("3D stiffness: the torsional model's edge springs are its lineal part, 1/l", "[stiffness][3d]")
 {
   Corner c;
-  CHECK_THROWS_WITH(c.stiffness(Torsional_stiffness{}), Catch::Contains("2D only"));
+  const auto k = c.stiffness(Torsional_stiffness{});
+  CHECK(close(k[c.edge(0, 1)], 1.0));
+  CHECK(close(k[c.edge(1, 2)], 1 / std::sqrt(2.0)));
 }

@@ -18,17 +18,23 @@ namespace spring_motion {
 /// dihedral angle of the regular tetrahedron, arccos(1/3)).
 inline double equiangular_angle(int dimension)
 {
-  return dimension == 2 ? M_PI / 3 : std::acos(1.0 / 3.0);
+  return dimension == 2 ? internal::pi / 3 : std::acos(1.0 / 3.0);
 }
 
 /// Equiangle skewness (paper Eq. 13) from an element's angles:
 /// R = max((Q_max - Q_e)/(pi - Q_e), (Q_e - Q_min)/Q_e), clamped to [0, 1].
-/// 0 is the equilateral element, 1 a degenerate one.
+/// 0 is the equilateral element, 1 a degenerate one. An angle that is not a
+/// number (an element with coincident or non-finite vertices) gives 1: NaN
+/// compares false, so min/max would otherwise skip it or clamp it to a
+/// "perfect" 0.
 inline double equiangle_skewness_from_angles(const double* angles, std::size_t n, int dimension)
 {
+  for(std::size_t k = 0; k < n; ++k)
+    if(!std::isfinite(angles[k]))
+      return 1.0;
   const double qe = equiangular_angle(dimension);
   const auto mm = std::minmax_element(angles, angles + n);
-  const double r = std::max((*mm.second - qe) / (M_PI - qe), (qe - *mm.first) / qe);
+  const double r = std::max((*mm.second - qe) / (internal::pi - qe), (qe - *mm.first) / qe);
   return std::min(1.0, std::max(0.0, r));
 }
 

@@ -12,6 +12,9 @@
 namespace spring_motion {
 namespace internal {
 
+/// pi (M_PI is not standard C++).
+constexpr double pi = 3.141592653589793238462643383279502884;
+
 template <int N>
 inline std::array<double, N> sub(const std::array<double, N>& a, const std::array<double, N>& b)
 {

@@ -2,9 +2,11 @@
 #ifndef SPRING_MOTION_STIFFNESS_GRID_SCALED_STIFFNESS_H
 #define SPRING_MOTION_STIFFNESS_GRID_SCALED_STIFFNESS_H
 
+#include <spring_motion/internal/capped_math.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
 
 #include <cmath>
+#include <optional>
 
 namespace spring_motion {
 
@@ -19,12 +21,16 @@ namespace spring_motion {
 /// millimetres with reference_length = 1000 moves like the same mesh in metres.
 struct Grid_scaled_stiffness
 {
-  double alpha = 0;            ///< 0: the paper's value, 2 in 2D and 1 in 3D
-  double beta = 0;             ///< 0: the paper's value, 4 in 2D and 3 in 3D
+  /// The paper's exponents: alpha = 2, beta = 4 in 2D; alpha = 1, beta = 3 in 3D.
+  static constexpr double paper_alpha(int dimension) { return dimension == 2 ? 2.0 : 1.0; }
+  static constexpr double paper_beta(int dimension) { return dimension == 2 ? 4.0 : 3.0; }
+
+  std::optional<double> alpha; ///< unset: paper_alpha(D); any value, 0 included, is used as given
+  std::optional<double> beta;  ///< unset: paper_beta(D)
   double reference_length = 1; ///< L_ref
 
-  double alpha_for(int dimension) const { return alpha != 0 ? alpha : (dimension == 2 ? 2.0 : 1.0); }
-  double beta_for(int dimension) const { return beta != 0 ? beta : (dimension == 2 ? 4.0 : 3.0); }
+  double alpha_for(int dimension) const { return alpha.value_or(paper_alpha(dimension)); }
+  double beta_for(int dimension) const { return beta.value_or(paper_beta(dimension)); }
 
   Angle_kind angle_kind(int) const { return Angle_kind::element; }
   double operator()(double length, const double* angles, std::size_t n, const Stiffness_context& ctx) const

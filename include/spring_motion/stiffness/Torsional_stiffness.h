@@ -4,6 +4,7 @@
 
 #include <spring_motion/Error.h>
 #include <spring_motion/internal/angles.h>
+#include <spring_motion/internal/capped_math.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
 
 #include <array>
@@ -11,12 +12,35 @@
 
 namespace spring_motion {
 
-/// Farhat's torsional springs (Farhat, Degand, Koobus, Lesoinne 1998), 2D:
-/// lineal springs `1/l^p` on the edges plus, in every triangle, a torsion
-/// spring of stiffness `C_i = 1/sin^2(theta_i)` at each vertex, assembled as
-/// `R^T C R` where R holds the derivatives of the three angles with respect
-/// to the six coordinates. The torsion couples x and y, so the solver works
-/// on 2x2 blocks.
+/// One of the twelve triangles inside a tetrahedron on which the 3D
+/// torsional springs act: local vertex `vertex` of face `face` (the face
+/// facing local vertex `apex`), the point j = (1 - lambda) p[edge[0]] +
+/// lambda p[edge[1]] on the face's edge facing `vertex`, and the apex.
+struct Torsion_triangle
+{
+  int vertex = 0;
+  int apex = 0;
+  std::array<int, 2> edge{};
+  double lambda = 0;
+};
+
+/// Torsional springs: lineal springs `1/l^p` on the edges plus torsion
+/// springs `C = 1/sin^2(theta)` at the angles of triangles, assembled as
+/// `sum C g g^T` with g the gradient of the angle with respect to the
+/// element's coordinates. The torsion couples the coordinate components, so
+/// the solver works on D x D blocks.
+///
+/// 2D (Farhat, Degand, Koobus and Lesoinne 1998): the element's own three
+/// angles. 3D (Degand and Farhat 2002): in each of the twelve triangles of
+/// torsion_triangles(), each spanned by a vertex i of a face, the apex k
+/// facing that face and the point j where the plane through the edge ik
+/// perpendicular to the face cuts the face's opposite edge. Its angle at i is
+/// the angle between the edge ik and the face, which goes to 0 as the
+/// tetrahedron flattens. j moves with that edge's end points (weights
+/// 1 - lambda and lambda, frozen in a step). Where the plane cuts the edge's
+/// line outside the edge, j is clamped to the nearer end point: the triangle
+/// is then a face of the tetrahedron (the paper clamps the weights only and
+/// keeps the outside point, which makes the energy see rigid motions).
 ///
 /// Our lineal part acts on each component separately (Batina's springs), as
 /// in every other model here, which keeps the system positive definite.
@@ -25,15 +49,69 @@ struct Torsional_stiffness
   double lineal_exponent = 1.0;
   double torsion_scale = 1.0; ///< multiplies every C_i
 
-  Angle_kind angle_kind(int dimension) const
-  {
-    // without a 3D element matrix the model would silently be lineal springs
-    SPRING_MOTION_CHECK(dimension == 2, "the torsional model is implemented in 2D only");
-    return Angle_kind::none;
-  }
+  Angle_kind angle_kind(int) const { return Angle_kind::none; }
   double operator()(double length, const double*, std::size_t, const Stiffness_context&) const
   {
     return internal::capped_pow(length, -lineal_exponent);
+  }
+
+  /// The twelve triangles of the 3D torsional springs in tetrahedron p: for
+  /// each face (in the order of the apex facing it) and each of its vertices.
+  static std::array<Torsion_triangle, 12> torsion_triangles(const std::array<std::array<double, 3>, 4>& p)
+  {
+    std::array<Torsion_triangle, 12> out;
+    std::size_t t = 0;
+    for(int k = 0; k < 4; ++k) {
+      std::array<int, 3> f;
+      for(int m = 0, c = 0; m < 4; ++m)
+        if(m != k)
+          f[std::size_t(c++)] = m;
+      const auto n = internal::cross(internal::sub<3>(p[f[1]], p[f[0]]), internal::sub<3>(p[f[2]], p[f[0]]));
+      for(int a = 0; a < 3; ++a) {
+        Torsion_triangle& tri = out[t++];
+        tri.vertex = f[std::size_t(a)];
+        tri.apex = k;
+        tri.edge = {f[std::size_t((a + 1) % 3)], f[std::size_t((a + 2) % 3)]};
+        // j on the line of the edge with (j - p_i) . m = 0, m the normal of
+        // the plane spanned by the face normal and the edge ik
+        const auto m = internal::cross(n, internal::sub<3>(p[k], p[tri.vertex]));
+        const auto e = internal::sub<3>(p[tri.edge[1]], p[tri.edge[0]]);
+        const double num = internal::dot<3>(internal::sub<3>(p[tri.vertex], p[tri.edge[0]]), m);
+        const double den = internal::dot<3>(e, m);
+        const double lambda = den != 0 ? num / den : 0.5;
+        tri.lambda = std::isnan(lambda) ? 0.5 : std::min(1.0, std::max(0.0, lambda));
+      }
+    }
+    return out;
+  }
+
+  /// Rows: the gradient of each interior angle of the (3D) triangle
+  /// (t0, t1, t2) with respect to its nine coordinates (x0 y0 z0 x1 ...).
+  static std::array<std::array<double, 9>, 3> angle_gradients(const std::array<double, 3>& t0,
+                                                                const std::array<double, 3>& t1,
+                                                                const std::array<double, 3>& t2)
+  {
+    // with u = t_b - t_a, v = t_c - t_a, w = u x v: moving t_b towards v
+    // within the plane closes the angle, at rate 1/|u|: d theta/d t_b =
+    // -(w x u) / (|w| |u|^2), and likewise d theta/d t_c = -(v x w) / (|w| |v|^2)
+    const std::array<const std::array<double, 3>*, 3> t{&t0, &t1, &t2};
+    std::array<std::array<double, 9>, 3> G{};
+    for(int a = 0; a < 3; ++a) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      const auto u = internal::sub<3>(*t[std::size_t(b)], *t[std::size_t(a)]);
+      const auto v = internal::sub<3>(*t[std::size_t(c)], *t[std::size_t(a)]);
+      const auto w = internal::cross(u, v);
+      const double lw = internal::norm<3>(w);
+      const auto gb = internal::cross(w, u);
+      const auto gc = internal::cross(v, w);
+      const double sb = -1 / (lw * internal::dot<3>(u, u)), sc = -1 / (lw * internal::dot<3>(v, v));
+      for(int r = 0; r < 3; ++r) {
+        G[std::size_t(a)][std::size_t(3 * b + r)] = sb * gb[std::size_t(r)];
+        G[std::size_t(a)][std::size_t(3 * c + r)] = sc * gc[std::size_t(r)];
+        G[std::size_t(a)][std::size_t(3 * a + r)] = -(sb * gb[std::size_t(r)] + sc * gc[std::size_t(r)]);
+      }
+    }
+    return G;
   }
 
   /// Rows of R: the gradient of each interior angle with respect to
@@ -81,6 +159,46 @@ struct Torsional_stiffness
       for(int r = 0; r < 6; ++r)
         for(int q = 0; q < 6; ++q)
           K[6 * r + q] += C * R[a][r] * R[a][q];
+    }
+  }
+
+  /// Adds sum over the twelve triangles of torsion_triangles() and their
+  /// angles of C g g^T (12x12, row-major, coordinates ordered x0 y0 z0 x1 ...),
+  /// g the angle's gradient with j's part shared out to the edge's ends.
+  void add_element_matrix(const std::array<std::array<double, 3>, 4>& p, double* K) const
+  {
+    // as in 2D: g grows like 1/length and C is at most 1e200
+    for(int a = 0; a < 4; ++a)
+      for(int b = a + 1; b < 4; ++b) {
+        const auto e = internal::sub<3>(p[b], p[a]);
+        const double ee = internal::dot<3>(e, e);
+        SPRING_MOTION_CHECK(ee >= 1e-100, "the torsional model needs edges longer than 1e-50 (found one of squared length "
+                                              << ee << "): scale the mesh");
+      }
+    for(const Torsion_triangle& tri : torsion_triangles(p)) {
+      std::array<double, 3> j;
+      for(int c = 0; c < 3; ++c)
+        j[std::size_t(c)] = (1 - tri.lambda) * p[tri.edge[0]][std::size_t(c)] + tri.lambda * p[tri.edge[1]][std::size_t(c)];
+      const auto& pv = p[tri.vertex];
+      const auto& pk = p[tri.apex];
+      const double w2 = internal::dot<3>(internal::cross(internal::sub<3>(j, pv), internal::sub<3>(pk, pv)),
+                                         internal::cross(internal::sub<3>(j, pv), internal::sub<3>(pk, pv)));
+      SPRING_MOTION_CHECK(w2 > 0 && std::isfinite(w2), "the torsional model needs tetrahedra that are not flat");
+      const auto G = angle_gradients(pv, j, pk);
+      const auto theta = internal::triangle_angles<3>(pv, j, pk);
+      for(int a = 0; a < 3; ++a) {
+        std::array<double, 12> g{};
+        for(int c = 0; c < 3; ++c) {
+          g[std::size_t(3 * tri.vertex + c)] += G[std::size_t(a)][std::size_t(c)];
+          g[std::size_t(3 * tri.edge[0] + c)] += (1 - tri.lambda) * G[std::size_t(a)][std::size_t(3 + c)];
+          g[std::size_t(3 * tri.edge[1] + c)] += tri.lambda * G[std::size_t(a)][std::size_t(3 + c)];
+          g[std::size_t(3 * tri.apex + c)] += G[std::size_t(a)][std::size_t(6 + c)];
+        }
+        const double C = torsion_scale * internal::inverse_sin_squared(theta[std::size_t(a)]);
+        for(int r = 0; r < 12; ++r)
+          for(int q = 0; q < 12; ++q)
+            K[12 * r + q] += C * g[std::size_t(r)] * g[std::size_t(q)];
+      }
     }
   }
 

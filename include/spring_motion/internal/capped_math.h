@@ -1,0 +1,74 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_INTERNAL_CAPPED_MATH_H
+#define SPRING_MOTION_INTERNAL_CAPPED_MATH_H
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace spring_motion {
+namespace internal {
+
+/// Stiffness values of the built-in models are capped here: large enough to
+/// freeze a collapsing element in place, small enough that a vertex's sum of
+/// a hundred such springs stays finite.
+constexpr double max_stiffness = 1e250;
+
+/// 1/sin^2(theta), with sin^2 floored so an angle of exactly 0 or pi gives the
+/// cap instead of infinity. Such an angle means the element is already flat:
+/// the validity check rejects that state before its stiffness is ever used,
+/// so the floor only guards round-off.
+inline double inverse_sin_squared(double theta)
+{
+  const double s = std::sin(theta);
+  return 1.0 / std::max(s * s, 1e-200);
+}
+
+inline double cap_stiffness(double k) { return std::min(k, max_stiffness); }
+
+// The capped operations below give min(result, max_stiffness) without ever
+// computing an overflowing intermediate (an overflow is an FE_OVERFLOW trap
+// under feenableexcept even when the cap would clip it). Within the cap they
+// return exactly what the plain operation returns.
+
+/// min(x^e, max_stiffness) for x >= 0.
+inline double capped_pow(double x, double e)
+{
+  if(x == 0)
+    return e > 0 ? 0.0 : (e == 0 ? 1.0 : max_stiffness);
+  // |log2 x| <= |ilogb x| + 1, so below this bound x^e lies in (2^-800,
+  // 2^800), far inside the cap: no log needed, and the models' usual
+  // exponents (1 to 4, either sign) are a few products instead of pow
+  // (within 2 ulp of it; pow is what stiffness costs most)
+  if(std::abs(e) * double(std::abs(std::ilogb(x)) + 1) < 800) {
+    const double a = std::abs(e);
+    if(a == 1 || a == 2 || a == 3 || a == 4) {
+      const double x2 = x * x;
+      const double p = a == 1 ? x : a == 2 ? x2 : a == 3 ? x2 * x : x2 * x2;
+      return e > 0 ? p : 1.0 / p;
+    }
+    return std::pow(x, e);
+  }
+  if(e * std::log(x) >= std::log(max_stiffness))
+    return max_stiffness;
+  return std::min(std::pow(x, e), max_stiffness);
+}
+/// min(a / b, max_stiffness) for a >= 0, b > 0.
+inline double capped_quotient(double a, double b)
+{
+  if(a / max_stiffness >= b)
+    return max_stiffness;
+  return std::min(a / b, max_stiffness);
+}
+/// min(a b, max_stiffness) for a, b >= 0 and finite.
+inline double capped_product(double a, double b)
+{
+  if(b > 0 && a >= max_stiffness / b)
+    return max_stiffness;
+  return std::min(a * b, max_stiffness);
+}
+
+} // namespace internal
+} // namespace spring_motion
+
+#endif

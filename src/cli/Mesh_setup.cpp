@@ -1,5 +1,6 @@
 // Copyright (c) 2026 SpringMotion developers.
 #include "Mesh_setup.h"
+#include "Arguments.h"
 #include "commands.h"
 
 #include <spring_motion/Error.h>
@@ -233,17 +234,7 @@ std::vector<int> resolve_labels(const Mesh_setup<D>& setup, const std::string& o
   std::vector<int> labels;
   if(list.empty())
     throw Input_error(setup.path, 0, "--" + option + " names no label (an empty set)" + valid);
-  for(const std::string& item : [&] {
-        std::vector<std::string> items;
-        std::string::size_type start = 0;
-        for(;;) {
-          const auto comma = list.find(',', start);
-          items.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-          if(comma == std::string::npos)
-            return items;
-          start = comma + 1;
-        }
-      }()) {
+  for(const std::string& item : split_list(list)) {
     if(item.empty())
       throw Input_error(setup.path, 0, "--" + option + " '" + list + "' has an empty item" + valid);
     int label = 0;

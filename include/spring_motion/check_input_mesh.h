@@ -19,8 +19,10 @@ namespace spring_motion {
 
 /// What is wrong with a simplex mesh before it is moved, judged with exact
 /// predicates (see docs/method.md, "Validity and quality"). Every list holds
-/// element indices in increasing order; a mesh is fit to be moved when all
-/// lists are empty (`valid()`).
+/// element indices in increasing order. A mesh is fit to be moved (`valid()`)
+/// when it has no degenerate, overlapping or non-manifold elements; elements
+/// oriented against the majority are reported but allowed, since inversion is
+/// judged against each element's own recorded orientation.
 struct Input_mesh_problems
 {
   std::size_t positive = 0; ///< elements of positive exact orientation
@@ -30,7 +32,8 @@ struct Input_mesh_problems
   std::vector<std::size_t> degenerate;
   /// Oriented against the rest: the sign the majority of the elements has
   /// (on a tie, the sign of the first non-degenerate element) is the mesh's
-  /// orientation, and these elements have the other one.
+  /// orientation, and these elements have the other one. Reported, not an
+  /// error: a file may list its elements in either order.
   std::vector<std::size_t> mixed_orientation;
   /// Elements lying on the same side of a facet as the element they share it
   /// with (the two overlap). Of each such pair the element oriented against
@@ -43,7 +46,7 @@ struct Input_mesh_problems
 
   bool valid() const
   {
-    return degenerate.empty() && mixed_orientation.empty() && overlapping.empty() && non_manifold.empty();
+    return degenerate.empty() && overlapping.empty() && non_manifold.empty();
   }
 };
 
@@ -139,12 +142,11 @@ Input_mesh_problems check_input_mesh(const Points& points, const Elements& eleme
 }
 
 /// The first problem element: the first degenerate one, else the first
-/// around a non-manifold facet, else the first overlapping one, else the
-/// first oriented against the rest. `problems` must not be valid.
+/// around a non-manifold facet, else the first overlapping one. `problems`
+/// must not be valid.
 inline std::size_t first_problem_element(const Input_mesh_problems& problems)
 {
-  for(const auto* list : {&problems.degenerate, &problems.non_manifold, &problems.overlapping,
-                          &problems.mixed_orientation})
+  for(const auto* list : {&problems.degenerate, &problems.non_manifold, &problems.overlapping})
     if(!list->empty())
       return list->front();
   return 0;
@@ -174,8 +176,6 @@ inline std::string describe_input_mesh_problems(const Input_mesh_problems& probl
   part(problems.overlapping.size(),
        "element(s) overlapping a neighbour in the input mesh (on the same side of the facet they share, exact test)",
        problems.overlapping);
-  part(problems.mixed_orientation.size(), "element(s) oriented against the majority in the input mesh (exact test)",
-       problems.mixed_orientation);
   return out.str();
 }
 

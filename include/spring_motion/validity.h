@@ -25,11 +25,11 @@ struct Orientation_record
   std::vector<signed char> sign; // +1 or -1 per element
 };
 
-/// Records the exact orientation of every element at positions x. Checks the
-/// mesh first (`check_input_mesh`): a mesh with degenerate elements, elements
-/// oriented against the rest, overlapping elements or a facet in more than
-/// two elements cannot be moved validly, and `Element_error` names its first
-/// problem element.
+/// Records the exact orientation of every element at positions x (each its
+/// own: elements may be listed in either order). Checks the mesh first
+/// (`check_input_mesh`): a mesh with degenerate elements, overlapping
+/// elements or a facet in more than two elements cannot be moved validly, and
+/// `Element_error` names its first problem element.
 template <int D>
 Orientation_record record_orientations(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x)
 {

@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <iterator>
 #include <sstream>
 #include <utility>
 
@@ -167,16 +166,10 @@ std::string describe_problems(const Mesh_setup<D>& setup, std::size_t* first_lin
                              element_plural(D) + " (not a manifold)");
   part(p.overlapping, std::string("inverted ") + noun(p.overlapping.size()) +
                           " (overlapping a neighbour across a shared " + facet_noun(D) + ", exact test)");
-  // an element oriented against the rest that overlaps a neighbour is named once, as inverted
-  std::vector<std::size_t> against;
-  std::set_difference(p.mixed_orientation.begin(), p.mixed_orientation.end(), p.overlapping.begin(),
-                      p.overlapping.end(), std::back_inserter(against));
-  part(against, std::string(noun(against.size())) + " oriented against the other " +
-                    std::to_string(p.positive + p.negative - p.mixed_orientation.size()) + " (exact test)");
   if(!out.str().empty())
     out << ": expected a valid mesh, every " << element_noun(D) << " of non-zero " << (D == 2 ? "area" : "volume")
-        << ", all with one orientation, on its own side of each " << facet_noun(D) << " it shares, and each "
-        << facet_noun(D) << " in at most two " << element_plural(D);
+        << " and on its own side of each " << facet_noun(D) << " it shares, each " << facet_noun(D)
+        << " in at most two " << element_plural(D);
   return out.str();
 }
 

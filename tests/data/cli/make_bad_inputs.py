@@ -41,8 +41,8 @@ write("bad_inf.mesh", medit(vertex_text=["%s %s 0" % p for p in GRID[:4]] + ["in
 write("bad_degenerate.mesh", medit(points=GRID[:4] + [(0.25, 0)] + GRID[5:]))
 # vertex 5 pushed below the bottom edge: triangles 1 2 5 and 2 6 5 flip
 write("bad_inverted.mesh", medit(points=GRID[:4] + [(0.6, -0.2)] + GRID[5:]))
-# triangle 2 6 5 listed clockwise: it overlaps nothing, but is oriented against the other seven
-write("bad_orientation.mesh", medit(tris=TRIS[:3] + [(2, 5, 6)] + TRIS[4:]))
+# triangle 2 6 5 listed clockwise: oriented against the other seven, which is allowed (it overlaps nothing)
+write("mixed_orientation.mesh", medit(tris=TRIS[:3] + [(2, 5, 6)] + TRIS[4:]))
 # two more triangles below the bottom edge 1-2, which three triangles then share (not a manifold)
 write("bad_nonmanifold.mesh", medit(points=GRID + [(0.5, -0.5), (0.5, -1)], tris=TRIS + [(2, 1, 10), (2, 1, 11)]))
 # two separate squares: the second one touches no moving or fixed boundary when --fixed names only label 4

@@ -1,7 +1,8 @@
-// Exact validity (validity.h, METHOD.md section 5) and deform()'s rollback:
-// the elements reported as inverted are exactly those whose CGAL::orientation,
-// computed here, differs from the initial one, and the mesh is left at the
-// last valid step.
+// Exact validity (validity.h, check_input_mesh.h; docs/method.md, "Validity
+// and quality") and deform()'s rollback: the elements reported as inverted are
+// exactly those whose CGAL::orientation, computed here, differs from the
+// initial one, and the mesh is left at the last valid step. Each problem of an
+// input mesh is found on a small hand-built mesh, with its exact elements.
 #include <spring_motion/spring_motion.h>
 
 #include "test_meshes.h"

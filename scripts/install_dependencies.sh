@@ -6,7 +6,11 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -q
+# nlohmann-json3-dev: writes the JSON report (src/report_json.cpp) and reads it
+# back in the tests; libcli11-dev: parses the spring-motion command line.
+# Both are header-only.
 $SUDO apt-get install -y -q --no-install-recommends \
   g++ make cmake \
   libcgal-dev libboost-graph-dev libeigen3-dev catch2 \
+  nlohmann-json3-dev libcli11-dev \
   python3 python3-numpy python3-matplotlib python3-meshio

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Validates SpringMotion JSON reports against the format of
-docs/report_format.md ("spring_motion.report/1"). Usage: validate_report.py FILE...
+"""Validates SpringMotion JSON reports against docs/report_format.md
+("spring_motion.report/1"). Usage: validate_report.py FILE...
 Exits non-zero, naming the file and the field, on the first violation."""
 import json
 import math
@@ -58,9 +58,24 @@ def validate(path):
             fail(path, f"motion.{k} missing")
     if len(mo["center"]) != 3 or len(mo["axis"]) != 3:
         fail(path, "motion.center and motion.axis need 3 components")
-    for k in ("name", "relaxation_factor", "tolerance"):
-        if k not in r["solver"]:
-            fail(path, f"solver.{k} missing")
+    so = r["solver"]
+    choices = {"name": ("conjugate_gradient", "sor"),
+               "preconditioner": ("multigrid", "symmetric_gauss_seidel", "none"),
+               "stopping": ("error_estimate", "max_update"),
+               "ordering": ("natural", "multicolour", "block_multicolour")}
+    for k, allowed in choices.items():
+        if so.get(k) not in allowed:
+            fail(path, f"solver.{k} is {so.get(k)!r}, expected one of {', '.join(allowed)}")
+    if (so["name"] == "sor") != (so["preconditioner"] == "none"):
+        fail(path, "solver.preconditioner is 'none' exactly when solver.name is 'sor'")
+    for k in ("relaxation_factor", "preconditioner_relaxation_factor", "tolerance"):
+        check_number(path, f"solver.{k}", so.get(k))
+    for k in ("max_iterations", "threads"):
+        if not isinstance(so.get(k), int) or isinstance(so.get(k), bool) or so[k] < 0:
+            fail(path, f"solver.{k} should be a non-negative integer")
+    for k in ("warm_start", "extrapolate"):
+        if not isinstance(so.get(k), bool):
+            fail(path, f"solver.{k} should be a boolean")
     steps = r["steps"]
     if not isinstance(steps, list) or not steps:
         fail(path, "steps should be a non-empty list")

@@ -1,125 +1,146 @@
 // Copyright (c) 2026 SpringMotion developers.
+// The JSON report of a run (docs/report_format.md), written with nlohmann-json.
 #include <spring_motion/Deform_report.h>
 #include <spring_motion/Error.h>
 
-#include <array>
-#include <charconv>
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <ostream>
-#include <sstream>
 #include <string>
 
 namespace spring_motion {
 namespace {
 
-// Shortest text that reads back to the same double; null for NaN and inf,
-// which JSON cannot hold.
-std::string number(double v)
+// Fields in the order docs/report_format.md lists them.
+using Json = nlohmann::ordered_json;
+
+// JSON has no NaN or infinity: a value that is not finite (an angle of a
+// motion without one, for instance) is written as null.
+Json number(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+template <class Range>
+Json numbers(const Range& values)
 {
-  if(!std::isfinite(v))
-    return "null";
-  std::array<char, 32> buf;
-  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), r.ptr);
+  Json a = Json::array();
+  for(const auto& v : values)
+    a.push_back(number(double(v)));
+  return a;
 }
 
-std::string quoted(const std::string& s)
+Json histogram(const Skewness_histogram& h)
 {
-  std::string out = "\"";
-  for(char c : s) {
-    switch(c) {
-    case '"': out += "\\\""; break;
-    case '\\': out += "\\\\"; break;
-    case '\n': out += "\\n"; break;
-    case '\t': out += "\\t"; break;
-    default:
-      if(static_cast<unsigned char>(c) < 0x20) {
-        char u[8];
-        std::snprintf(u, sizeof u, "\\u%04x", c);
-        out += u;
-      } else
-        out += c;
-    }
+  return Json{{"histogram", numbers(h.fractions)}, {"count", h.count}, {"mean", number(h.mean)}, {"max", number(h.max)}};
+}
+
+const char* method_name(Solver_method m) { return m == Solver_method::sor ? "sor" : "conjugate_gradient"; }
+
+const char* preconditioner_name(const Solver_options& o)
+{
+  if(o.method == Solver_method::sor)
+    return "none";
+  return o.preconditioner == Preconditioner::multigrid ? "multigrid" : "symmetric_gauss_seidel";
+}
+
+const char* ordering_name(Vertex_ordering o)
+{
+  switch(o) {
+  case Vertex_ordering::multicolour: return "multicolour";
+  case Vertex_ordering::natural: return "natural";
+  case Vertex_ordering::block_multicolour: return "block_multicolour";
   }
-  return out + "\"";
+  return "unknown";
 }
 
-template <class It>
-std::string array(It first, It last)
+// Every field of Solver_options. Fields added to Solver_options are added
+// here (and to docs/report_format.md), after the existing ones: readers of
+// format 1 ignore fields they do not know.
+Json solver(const Solver_options& o)
 {
-  std::string s = "[";
-  for(It it = first; it != last; ++it)
-    s += (it == first ? "" : ", ") + number(double(*it));
-  return s + "]";
+  Json s;
+  s["name"] = method_name(o.method);
+  s["preconditioner"] = preconditioner_name(o);
+  s["stopping"] = o.stopping == Stopping_rule::max_update ? "max_update" : "error_estimate";
+  s["relaxation_factor"] = number(o.relaxation_factor);
+  s["tolerance"] = number(o.tolerance);
+  s["max_iterations"] = o.max_iterations;
+  s["warm_start"] = o.warm_start;
+  s["preconditioner_relaxation_factor"] = number(o.preconditioner_relaxation_factor);
+  s["extrapolate"] = o.extrapolate;
+  s["ordering"] = ordering_name(o.ordering);
+  s["threads"] = o.threads;
+  return s;
 }
 
-std::string histogram(const Skewness_histogram& h)
+Json step(const Step_report& s)
 {
-  return "{ \"histogram\": " + array(h.fractions.begin(), h.fractions.end()) + ", \"count\": " +
-         std::to_string(h.count) + ", \"mean\": " + number(h.mean) + ", \"max\": " + number(h.max) + " }";
+  Json j;
+  j["step"] = s.step;
+  j["fraction"] = number(s.fraction);
+  j["angle_deg"] = number(s.angle_deg);
+  j["iterations"] = s.iterations;
+  j["converged"] = s.converged;
+  j["max_update"] = number(s.max_update);
+  j["residual"] = number(s.residual);
+  j["error_estimate"] = number(s.error_estimate);
+  j["substeps"] = s.substeps;
+  j["inverted"] = s.inverted;
+  j["min_size_ratio"] = number(s.min_size_ratio);
+  j["max_size_ratio"] = number(s.max_size_ratio);
+  j["max_skewness_moving"] = number(s.max_skewness_moving);
+  j["max_skewness_all"] = number(s.max_skewness_all);
+  j["seconds"] = Json{{"stiffness", number(s.seconds_stiffness)},
+                      {"solve", number(s.seconds_solve)},
+                      {"check", number(s.seconds_check)}};
+  return j;
 }
 
 } // namespace
 
 void write_report_json(const Deform_report& r, std::ostream& out)
 {
-  out << "{ \"format\": \"spring_motion.report/1\",\n";
-  out << "  \"mesh\": { \"dimension\": " << r.dimension << ", \"vertices\": " << r.vertices
-      << ", \"elements\": " << r.elements << ", \"moving_vertices\": " << r.moving_vertices
-      << ", \"fixed_vertices\": " << r.fixed_vertices << " },\n";
-  out << "  \"model\": { \"name\": " << quoted(r.model.name) << ", \"parameters\": {";
-  for(std::size_t i = 0; i < r.model.parameters.size(); ++i)
-    out << (i ? ", " : " ") << quoted(r.model.parameters[i].first) << ": " << number(r.model.parameters[i].second);
-  out << " } },\n";
+  Json j;
+  j["format"] = "spring_motion.report/1";
+  j["mesh"] = Json{{"dimension", r.dimension},
+                   {"vertices", r.vertices},
+                   {"elements", r.elements},
+                   {"moving_vertices", r.moving_vertices},
+                   {"fixed_vertices", r.fixed_vertices}};
+  Json parameters = Json::object();
+  for(const auto& [name, value] : r.model.parameters)
+    parameters[name] = number(value);
+  j["model"] = Json{{"name", r.model.name}, {"parameters", parameters}};
   const auto& m = r.motion;
-  out << "  \"motion\": { \"kind\": " << quoted(m.kind) << ", \"amplitude_deg\": " << number(m.amplitude_deg)
-      << ", \"mean_angle_deg\": " << number(m.mean_angle_deg) << ", \"steps\": " << r.number_of_steps
-      << ", \"center\": " << array(m.center.begin(), m.center.end())
-      << ", \"axis\": " << array(m.axis.begin(), m.axis.end())
-      << ", \"displacement\": " << array(m.displacement.begin(), m.displacement.end()) << " },\n";
-  out << "  \"solver\": { \"name\": "
-      << quoted(r.solver.method == Solver_method::sor ? "sor" : "conjugate_gradient")
-      << ", \"preconditioner\": "
-      << quoted(r.solver.method == Solver_method::sor ? "none"
-                : r.solver.preconditioner == Preconditioner::multigrid ? "multigrid" : "symmetric_gauss_seidel")
-      << ", \"stopping\": " << quoted(r.solver.stopping == Stopping_rule::max_update ? "max_update" : "error_estimate")
-      << ", \"relaxation_factor\": " << number(r.solver.relaxation_factor)
-      << ", \"tolerance\": " << number(r.solver.tolerance) << ", \"max_iterations\": " << r.solver.max_iterations
-      << ", \"warm_start\": " << (r.solver.warm_start ? "true" : "false") << " },\n";
-  out << "  \"steps\": [";
-  for(std::size_t i = 0; i < r.steps.size(); ++i) {
-    const auto& s = r.steps[i];
-    out << (i ? ",\n    " : "\n    ") << "{ \"step\": " << s.step << ", \"fraction\": " << number(s.fraction)
-        << ", \"angle_deg\": " << number(s.angle_deg) << ", \"iterations\": " << s.iterations
-        << ", \"converged\": " << (s.converged ? "true" : "false") << ", \"max_update\": " << number(s.max_update)
-        << ", \"residual\": " << number(s.residual) << ", \"error_estimate\": " << number(s.error_estimate) << ", \"substeps\": " << s.substeps
-        << ", \"inverted\": " << s.inverted << ", \"min_size_ratio\": " << number(s.min_size_ratio)
-        << ", \"max_size_ratio\": " << number(s.max_size_ratio)
-        << ", \"max_skewness_moving\": " << number(s.max_skewness_moving)
-        << ", \"max_skewness_all\": " << number(s.max_skewness_all) << ", \"seconds\": { \"stiffness\": "
-        << number(s.seconds_stiffness) << ", \"solve\": " << number(s.seconds_solve)
-        << ", \"check\": " << number(s.seconds_check) << " } }";
-  }
-  out << (r.steps.empty() ? "],\n" : "\n  ],\n");
-  out << "  \"completed\": " << (r.completed ? "true" : "false") << ",\n";
-  out << "  \"converged\": " << (r.converged ? "true" : "false") << ",\n";
-  out << "  \"first_invalid\": ";
+  j["motion"] = Json{{"kind", m.kind},
+                     {"amplitude_deg", number(m.amplitude_deg)},
+                     {"mean_angle_deg", number(m.mean_angle_deg)},
+                     {"steps", r.number_of_steps},
+                     {"center", numbers(m.center)},
+                     {"axis", numbers(m.axis)},
+                     {"displacement", numbers(m.displacement)}};
+  j["solver"] = solver(r.solver);
+  j["steps"] = Json::array();
+  for(const auto& s : r.steps)
+    j["steps"].push_back(step(s));
+  j["completed"] = r.completed;
+  j["converged"] = r.converged;
   if(r.first_invalid) {
     const auto& f = *r.first_invalid;
-    out << "{ \"step\": " << f.step << ", \"fraction\": " << number(f.fraction)
-        << ", \"angle_deg\": " << number(f.angle_deg) << ", \"elements\": " << array(f.elements.begin(), f.elements.end())
-        << " }";
+    j["first_invalid"] = Json{{"step", f.step},
+                              {"fraction", number(f.fraction)},
+                              {"angle_deg", number(f.angle_deg)},
+                              {"elements", f.elements}};
   } else
-    out << "null";
-  out << ",\n  \"final_fraction\": " << number(r.final_fraction) << ",\n";
-  out << "  \"final_angle_deg\": " << number(r.final_angle_deg) << ",\n";
-  out << "  \"min_size_ratio\": " << number(r.min_size_ratio) << ",\n";
-  out << "  \"max_size_ratio\": " << number(r.max_size_ratio) << ",\n";
-  out << "  \"quality\": { \"moving_boundary\": " << histogram(r.quality_moving)
-      << ",\n               \"all\": " << histogram(r.quality_all) << " },\n";
-  out << "  \"seconds_total\": " << number(r.seconds_total) << " }\n";
+    j["first_invalid"] = nullptr;
+  j["final_fraction"] = number(r.final_fraction);
+  j["final_angle_deg"] = number(r.final_angle_deg);
+  j["min_size_ratio"] = number(r.min_size_ratio);
+  j["max_size_ratio"] = number(r.max_size_ratio);
+  j["quality"] = Json{{"moving_boundary", histogram(r.quality_moving)}, {"all", histogram(r.quality_all)}};
+  j["seconds_total"] = number(r.seconds_total);
+  out << j.dump(2) << "\n";
 }
 
 void write_report_json(const Deform_report& report, const std::string& path)

@@ -1,7 +1,8 @@
-// Exact validity (validity.h, docs/method.md "Validity and quality") and deform()'s rollback:
-// the elements reported as inverted are exactly those whose CGAL::orientation,
-// computed here, differs from the initial one, and the mesh is left at the
-// last valid step.
+// Exact validity (validity.h, check_input_mesh.h; docs/method.md, "Validity
+// and quality") and deform()'s rollback: the elements reported as inverted are
+// exactly those whose CGAL::orientation, computed here, differs from the
+// initial one, and the mesh is left at the last valid step. Each problem of an
+// input mesh is found on a small hand-built mesh, with its exact elements.
 #include <spring_motion/spring_motion.h>
 
 #include "test_meshes.h"
@@ -79,10 +80,166 @@ TEST_CASE("find_inverted_elements: flipped and flat elements, against CGAL::orie
   CHECK(check_against_cgal(x) == std::vector<std::size_t>{0, 5});
 }
 
+namespace {
+// The element the Element_error of record_orientations names, or -1.
+template <int D>
+long refused_element(const Spring_network<D>& net)
+{
+  try {
+    record_orientations(net, net.points);
+  } catch(const Element_error& e) {
+    return long(e.element());
+  }
+  return -1;
+}
+
+// A regular hexagon around vertex 6, six counter-clockwise triangles.
+Indexed_mesh<2> hexagon_fan()
+{
+  Indexed_mesh<2> mesh;
+  for(int k = 0; k < 6; ++k)
+    mesh.points.push_back({std::cos(k * M_PI / 3), std::sin(k * M_PI / 3)});
+  mesh.points.push_back({0, 0});
+  for(std::uint32_t k = 0; k < 6; ++k)
+    mesh.elements.push_back({k, std::uint32_t((k + 1) % 6), 6});
+  return mesh;
+}
+
+using Elements = std::vector<std::size_t>;
+} // namespace
+
 TEST_CASE("record_orientations: a degenerate input element is an error", "[validity][errors]")
 {
   const auto net = make_spring_network<2>({{0, 0}, {1, 0}, {2, 0}, {0, 1}}, {{0, 1, 3}, {0, 1, 2}});
   CHECK_THROWS_WITH(record_orientations(net, net.points), Catch::Contains("degenerate") && Catch::Contains("1"));
+  CHECK(refused_element(net) == 1);
+}
+
+TEST_CASE("check_input_mesh: a valid mesh has no problems", "[validity][check]")
+{
+  const auto fan = hexagon_fan();
+  const auto p = check_input_mesh<2>(fan.points, fan.elements);
+  CHECK(p.valid());
+  CHECK(p.positive == 6);
+  CHECK(p.negative == 0);
+  // all clockwise is as valid: the orientation only has to be the same throughout
+  auto cw = fan;
+  for(auto& e : cw.elements)
+    std::swap(e[0], e[1]);
+  const auto q = check_input_mesh<2>(cw.points, cw.elements);
+  CHECK(q.valid());
+  CHECK(q.negative == 6);
+}
+
+TEST_CASE("check_input_mesh: degenerate elements (zero exact orientation)", "[validity][check]")
+{
+  auto fan = hexagon_fan();
+  // vertex 6 exactly onto vertex 0: the two triangles using both are flat,
+  // the other four keep their area and overlap nothing
+  fan.points[6] = fan.points[0];
+  const auto p = check_input_mesh<2>(fan.points, fan.elements);
+  CHECK(p.degenerate == Elements{0, 5});
+  CHECK(p.positive == 4);
+  CHECK(p.negative == 0);
+  CHECK(p.mixed_orientation.empty());
+  CHECK(p.overlapping.empty()); // a flat element overlaps nothing: it is reported as degenerate only
+  CHECK(p.non_manifold.empty());
+  CHECK_FALSE(p.valid());
+  CHECK(first_problem_element(p) == 0);
+}
+
+TEST_CASE("check_input_mesh: elements oriented against the majority", "[validity][check]")
+{
+  auto fan = hexagon_fan();
+  std::swap(fan.elements[3][0], fan.elements[3][1]); // same triangle, listed clockwise
+  const auto p = check_input_mesh<2>(fan.points, fan.elements);
+  CHECK(p.positive == 5);
+  CHECK(p.negative == 1);
+  CHECK(p.mixed_orientation == Elements{3});
+  CHECK(p.degenerate.empty());
+  CHECK(p.overlapping.empty()); // geometrically the mesh is fine
+  CHECK(p.valid());             // reported, not refused: each element keeps its own sign
+  const auto net = make_spring_network<2>(fan.points, fan.elements);
+  const auto rec = record_orientations(net, net.points);
+  for(std::size_t t = 0; t < 6; ++t)
+    CHECK(rec.sign[t] == (t == 3 ? -1 : 1));
+  // a tie: the first element's sign is the mesh's
+  Indexed_mesh<2> two;
+  two.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  two.elements = {{0, 2, 1}, {0, 2, 3}};
+  const auto q = check_input_mesh<2>(two.points, two.elements);
+  CHECK(q.positive == 1);
+  CHECK(q.negative == 1);
+  CHECK(q.mixed_orientation == Elements{1});
+  CHECK(q.valid());
+}
+
+TEST_CASE("check_input_mesh: elements overlapping across a shared facet", "[validity][check]")
+{
+  // two counter-clockwise triangles on the same side of their shared edge 0-1
+  Indexed_mesh<2> fold;
+  fold.points = {{0, 0}, {1, 0}, {0.5, 1}, {0.5, 0.5}};
+  fold.elements = {{0, 1, 2}, {0, 1, 3}};
+  const auto p = check_input_mesh<2>(fold.points, fold.elements);
+  CHECK(p.positive == 2);
+  CHECK(p.mixed_orientation.empty());
+  CHECK(p.overlapping == Elements{0, 1}); // same orientation: both are listed
+  CHECK(p.degenerate.empty());
+  CHECK_FALSE(p.valid());
+
+  // a fan whose vertex 6 moved beyond the edge 0-1: triangle 0 turned over and
+  // overlaps its neighbours 1 and 5 across the edges 6-1 and 6-0
+  auto fan = hexagon_fan();
+  fan.points[6] = {0.9 * std::cos(M_PI / 6) * 1.2, 0.9 * std::sin(M_PI / 6) * 1.2};
+  const auto q = check_input_mesh<2>(fan.points, fan.elements);
+  CHECK(q.negative == 1);
+  CHECK(q.mixed_orientation == Elements{0});
+  CHECK(q.overlapping == Elements{0}); // of each pair, the one against the majority
+  CHECK(refused_element(make_spring_network<2>(fan.points, fan.elements)) == 0);
+
+  // 3D: two tetrahedra on the same side of their shared triangle 0-1-2
+  std::vector<std::array<double, 3>> pts{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1}, {0.1, 0.1, 0.5}};
+  std::vector<std::array<Index, 4>> good{{0, 1, 2, 3}, {0, 2, 1, 4}}, bad{{0, 1, 2, 3}, {0, 1, 2, 5}};
+  const auto g = check_input_mesh<3>(pts, good);
+  CHECK(g.valid());
+  CHECK(g.positive == 2);
+  const auto b = check_input_mesh<3>(pts, bad);
+  CHECK(b.positive == 2);
+  CHECK(b.overlapping == Elements{0, 1});
+  CHECK(refused_element(make_spring_network<3>(pts, bad)) == 0);
+}
+
+TEST_CASE("check_input_mesh: a facet in more than two elements", "[validity][check]")
+{
+  Indexed_mesh<2> fin;
+  fin.points = {{0, 0}, {1, 0}, {0.5, 1}, {0.5, -1}, {0.5, 2}};
+  fin.elements = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}; // all counter-clockwise, all on the edge 0-1
+  const auto p = check_input_mesh<2>(fin.points, fin.elements);
+  CHECK(p.positive == 3);
+  CHECK(p.non_manifold_facets == 1);
+  CHECK(p.non_manifold == Elements{0, 1, 2});
+  CHECK(p.overlapping.empty()); // judged between two elements only
+  CHECK(p.mixed_orientation.empty());
+  CHECK_FALSE(p.valid());
+  // an element using a vertex that does not exist is an error, not a problem to report
+  fin.elements[2][2] = 7;
+  CHECK_THROWS_AS(check_input_mesh<2>(fin.points, fin.elements), Element_error);
+}
+
+TEST_CASE("deform: an overlapping input mesh is refused before any motion", "[validity][deform][errors]")
+{
+  auto fan = hexagon_fan();
+  fan.points[6] = {0.9 * std::cos(M_PI / 6) * 1.2, 0.9 * std::sin(M_PI / 6) * 1.2};
+  const auto centre_moves = [](const Vertex_info<2>& v) {
+    return v.index == 6 ? Vertex_role::moving : Vertex_role::fixed;
+  };
+  try {
+    deform(fan, centre_moves, Translation_motion<2>{{-0.1, 0}}, Lineal_stiffness{});
+    FAIL("deform accepted an overlapping mesh");
+  } catch(const Element_error& e) {
+    CHECK(e.element() == 0);
+    CHECK_THAT(e.what(), Catch::Contains("1 element(s) overlapping a neighbour in the input mesh"));
+  }
 }
 
 TEST_CASE("deform: pushing a vertex across its opposite edge flags exactly the flipped elements and rolls back",

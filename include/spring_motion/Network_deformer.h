@@ -60,10 +60,11 @@ public:
     }
     SPRING_MOTION_CHECK(!moving_.empty(), "no vertex is moving: the set of moving vertices is empty");
     const std::vector<Index> unreached = undetermined_vertices(net_, roles_);
-    SPRING_MOTION_CHECK(unreached.empty(), unreached.size() << " free vertices (for instance vertex "
-                                                            << (unreached.empty() ? 0 : unreached.front())
-                                                            << ") are connected to no constrained vertex: "
-                                                               "their displacement is undetermined (singular system)");
+    SPRING_MOTION_VERTEX_CHECK(unreached.empty(), unreached.empty() ? 0 : unreached.front(),
+                               unreached.size() << " free vertices (for instance vertex "
+                                                << (unreached.empty() ? 0 : unreached.front())
+                                                << ") are connected to no constrained vertex: "
+                                                   "their displacement is undetermined (singular system)");
     initial_measure_.resize(net_.number_of_elements());
     touches_moving_.assign(net_.number_of_elements(), 0);
     for(std::size_t t = 0; t < net_.number_of_elements(); ++t) {

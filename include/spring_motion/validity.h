@@ -3,11 +3,11 @@
 #define SPRING_MOTION_VALIDITY_H
 
 #include <spring_motion/Error.h>
+#include <spring_motion/check_input_mesh.h>
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/internal/element_points.h>
+#include <spring_motion/internal/exact_orientation.h>
 #include <spring_motion/internal/threads.h>
-
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
 #include <array>
@@ -25,49 +25,21 @@ struct Orientation_record
   std::vector<signed char> sign; // +1 or -1 per element
 };
 
-namespace internal {
-
-using Exact_predicates_kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-
-/// The exact orientation of an element: CGAL's filtered predicate decides the
-/// sign of the determinant exactly for the double coordinates given.
-inline int exact_orientation(const std::array<std::array<double, 2>, 3>& p)
-{
-  using P = Exact_predicates_kernel::Point_2;
-  return int(CGAL::orientation(P(p[0][0], p[0][1]), P(p[1][0], p[1][1]), P(p[2][0], p[2][1])));
-}
-inline int exact_orientation(const std::array<std::array<double, 3>, 4>& p)
-{
-  using P = Exact_predicates_kernel::Point_3;
-  return int(CGAL::orientation(P(p[0][0], p[0][1], p[0][2]), P(p[1][0], p[1][1], p[1][2]),
-                               P(p[2][0], p[2][1], p[2][2]), P(p[3][0], p[3][1], p[3][2])));
-}
-
-
-} // namespace internal
-
-/// Records the exact orientation of every element at positions x. Throws
-/// `Error` listing the first few degenerate (zero-orientation) elements: a
-/// mesh that is already degenerate cannot be moved validly.
+/// Records the exact orientation of every element at positions x (each its
+/// own: elements may be listed in either order). Checks the mesh first
+/// (`check_input_mesh`): a mesh with degenerate elements, overlapping
+/// elements or a facet in more than two elements cannot be moved validly, and
+/// `Element_error` names its first problem element.
 template <int D>
 Orientation_record record_orientations(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x)
 {
+  const Input_mesh_problems problems = check_input_mesh<D>(x, net.elements);
+  SPRING_MOTION_ELEMENT_CHECK(problems.valid(), first_problem_element(problems),
+                              describe_input_mesh_problems(problems));
   Orientation_record rec;
   rec.sign.resize(net.number_of_elements());
-  std::vector<std::size_t> degenerate;
-  for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
-    const int o = internal::exact_orientation(internal::element_points<D>(net.elements, x, t));
-    rec.sign[t] = static_cast<signed char>(o);
-    if(o == 0)
-      degenerate.push_back(t);
-  }
-  if(!degenerate.empty()) {
-    std::ostringstream list;
-    for(std::size_t i = 0; i < std::min<std::size_t>(5, degenerate.size()); ++i)
-      list << (i ? ", " : "") << degenerate[i];
-    SPRING_MOTION_CHECK(false, degenerate.size() << " degenerate element(s) in the input mesh (zero area or volume): "
-                                                 << list.str() << (degenerate.size() > 5 ? ", ..." : ""));
-  }
+  for(std::size_t t = 0; t < net.number_of_elements(); ++t)
+    rec.sign[t] = static_cast<signed char>(internal::exact_orientation(internal::element_points<D>(net.elements, x, t)));
   return rec;
 }
 

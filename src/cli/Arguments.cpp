@@ -1,6 +1,11 @@
 // Copyright (c) 2026 SpringMotion developers.
 #include "Arguments.h"
 
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <iterator>
+
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -34,45 +39,66 @@ std::vector<std::string> split_list(const std::string& text)
 
 Arguments::Arguments(const std::vector<std::string>& arguments, const std::vector<Option_spec>& specs)
 {
-  bool options_ended = false;
-  for(std::size_t i = 0; i < arguments.size(); ++i) {
-    const std::string& a = arguments[i];
-    if(options_ended || a.size() < 2 || a.compare(0, 2, "--") != 0) {
-      if(!options_ended && a.size() >= 2 && a[0] == '-' && !std::isdigit(static_cast<unsigned char>(a[1])) &&
-         a[1] != '.')
-        throw Usage_error("unknown option '" + a + "': options are written --name");
-      operands_.push_back(a);
+  // CLI11 reads the command line; the values stay text here, each checked
+  // when the command reads it, so that every message names its option.
+  CLI::App app;
+  app.set_help_flag(); // --help is an option of ours, answered by the command
+  app.allow_extras();  // unknown options are named below, in our words
+  app.add_option("operands", operands_);
+  std::map<std::string, int> flag_counts;
+  for(const Option_spec& spec : specs) {
+    if(spec.takes_value)
+      app.add_option("--" + spec.name, values_[spec.name])
+          ->expected(1)
+          ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    else
+      app.add_flag("--" + spec.name, flag_counts[spec.name])->disable_flag_override();
+  }
+  // "--name=" gives an empty value, which CLI11 would take from the next
+  // argument: a value of one NUL stands for it (no shell passes a NUL).
+  const std::string empty_marker(1, '\0');
+  std::vector<std::string> args;
+  for(const std::string& a : arguments)
+    if(a.size() > 3 && a.compare(0, 2, "--") == 0 && a.back() == '=' && a.find('=') == a.size() - 1) {
+      args.push_back(a.substr(0, a.size() - 1));
+      args.push_back(empty_marker);
+    } else
+      args.push_back(a);
+  std::reverse(args.begin(), args.end()); // CLI11 takes them last first
+  try {
+    app.parse(args);
+  } catch(const CLI::ArgumentMismatch& e) {
+    // CLI11's message starts with the option's name, with or without dashes
+    const std::string what = e.what();
+    std::string name = what.substr(0, what.find_first_of(": "));
+    if(const auto first = name.find_first_not_of('-'); first != std::string::npos)
+      name = "--" + name.substr(first);
+    if(what.find("disallowed flag override") != std::string::npos)
+      throw Usage_error("option " + name + " takes no value");
+    throw Usage_error("option " + name + " needs a value");
+  } catch(const CLI::ParseError& e) {
+    throw Usage_error(e.what());
+  }
+  for(const std::string& extra : app.remaining()) {
+    if(extra.size() >= 2 && extra[0] == '-' && (std::isdigit(static_cast<unsigned char>(extra[1])) || extra[1] == '.')) {
+      operands_.push_back(extra); // a negative number is an operand
       continue;
     }
-    if(a == "--") {
-      options_ended = true;
-      continue;
-    }
-    std::string name = a.substr(2);
-    std::optional<std::string> inline_value;
-    if(const auto eq = name.find('='); eq != std::string::npos) {
-      inline_value = name.substr(eq + 1);
-      name.erase(eq);
-    }
-    const Option_spec* spec = nullptr;
-    for(const Option_spec& s : specs)
-      if(s.name == name)
-        spec = &s;
-    if(spec == nullptr)
-      throw Usage_error("unknown option '--" + name + "'");
-    if(!spec->repeatable && values_.count(name) != 0)
-      throw Usage_error("option --" + name + " is given twice: expected it once");
-    std::string value;
-    if(spec->takes_value) {
-      if(inline_value)
-        value = *inline_value;
-      else if(i + 1 < arguments.size())
-        value = arguments[++i];
-      else
-        throw Usage_error("option --" + name + " needs a value");
-    } else if(inline_value)
-      throw Usage_error("option --" + name + " takes no value");
-    values_[name].push_back(value);
+    const std::string name = extra.substr(0, extra.find('='));
+    if(name.size() >= 2 && name.compare(0, 2, "--") == 0)
+      throw Usage_error("unknown option '" + name + "'");
+    throw Usage_error("unknown option '" + name + "': options are written --name");
+  }
+  for(const auto& [name, count] : flag_counts)
+    values_[name].assign(std::size_t(std::max(count, 0)), std::string());
+  for(auto it = values_.begin(); it != values_.end();) {
+    const auto spec = std::find_if(specs.begin(), specs.end(), [&](const Option_spec& s) { return s.name == it->first; });
+    if(it->second.size() > 1 && !spec->repeatable)
+      throw Usage_error("option --" + it->first + " is given twice: expected it once");
+    for(std::string& v : it->second)
+      if(v == empty_marker)
+        v.clear();
+    it = it->second.empty() ? values_.erase(it) : std::next(it);
   }
 }
 

@@ -3,10 +3,11 @@
 #ifndef SPRING_MOTION_SRC_CLI_ARGUMENTS_H
 #define SPRING_MOTION_SRC_CLI_ARGUMENTS_H
 
+#include <spring_motion/Error.h>
+
 #include <cstddef>
 #include <map>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -15,10 +16,10 @@ namespace cli {
 
 /// A command line that does not make sense (unknown option, missing or
 /// malformed value): exit status 2, with a pointer to the command's --help.
-class Usage_error : public std::runtime_error
+class Usage_error : public Error
 {
 public:
-  explicit Usage_error(const std::string& message) : std::runtime_error(message) {}
+  explicit Usage_error(const std::string& message) : Error(message) {}
 };
 
 /// An option a command accepts: `--name VALUE` (or `--name=VALUE`) when it
@@ -30,8 +31,8 @@ struct Option_spec
   bool repeatable = false;
 };
 
-/// The parsed options and operands of one subcommand. Values are checked
-/// when they are read, so that each message names the option.
+/// The options and operands of one subcommand, read by CLI11. Values are
+/// checked when they are read, so that each message names the option.
 class Arguments
 {
 public:

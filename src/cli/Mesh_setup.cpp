@@ -1,13 +1,16 @@
 // Copyright (c) 2026 SpringMotion developers.
 #include "Mesh_setup.h"
+#include "Arguments.h"
+#include "commands.h"
 
 #include <spring_motion/Error.h>
 #include <spring_motion/Input_error.h>
 #include <spring_motion/internal/simplex_tables.h>
-#include <spring_motion/validity.h>
+#include <spring_motion/mesh_traits/Indexed_mesh.h>
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <sstream>
 #include <utility>
 
@@ -74,117 +77,54 @@ Mesh_setup<D> make_mesh_setup(const std::string& path, const Mesh_file& file, bo
   }();
   setup.mesh = &mesh;
   const std::size_t m = mesh.elements.size();
-  const auto& element_lines = file.element_lines;
+  setup.problems = check_input_mesh<D>(mesh.points, mesh.elements);
 
-  // Exact orientation of every element.
-  std::vector<int> sign(m);
-  for(std::size_t t = 0; t < m; ++t) {
-    sign[t] = internal::exact_orientation(internal::element_points<D>(mesh.elements, mesh.points, t));
-    if(sign[t] == 0)
-      setup.problems.degenerate.push_back(t);
-    else
-      ++(sign[t] > 0 ? setup.problems.positive : setup.problems.negative);
+  // Labelled facets: how many elements each is a side of. None: an error of
+  // the file; one: on the boundary, naming a part of it; two: inside, ignored.
+  for(std::size_t t = 0; t < m; ++t)
+    ++setup.labels[t < mesh.element_labels.size() ? mesh.element_labels[t] : 0].elements;
+  std::vector<std::pair<Key, std::size_t>> labelled; // sorted facet, index in the file's list
+  labelled.reserve(mesh.boundary_facets.size());
+  for(std::size_t f = 0; f < mesh.boundary_facets.size(); ++f) {
+    Key key = mesh.boundary_facets[f];
+    std::sort(key.begin(), key.end());
+    labelled.push_back({key, f});
   }
-
-  // Facets of the elements: sorted vertex triple/pair, element, local facet.
-  struct Rec
-  {
-    Key key;
-    std::uint32_t element;
-    int local;
-  };
-  std::vector<Rec> recs;
-  recs.reserve(m * (D + 1));
+  std::sort(labelled.begin(), labelled.end());
+  std::vector<std::size_t> sides(mesh.boundary_facets.size(), 0);
   for(std::size_t t = 0; t < m; ++t)
     for(int k = 0; k <= D; ++k) {
       Key key;
       for(int c = 0; c < D; ++c)
         key[c] = mesh.elements[t][Tables::facet[k][c]];
       std::sort(key.begin(), key.end());
-      recs.push_back({key, std::uint32_t(t), k});
+      for(auto it = std::lower_bound(labelled.begin(), labelled.end(), std::make_pair(key, std::size_t(0)));
+          it != labelled.end() && it->first == key; ++it)
+        ++sides[it->second];
     }
-  std::sort(recs.begin(), recs.end(), [](const Rec& a, const Rec& b) {
-    return a.key != b.key ? a.key < b.key : a.element < b.element;
-  });
-  std::vector<std::size_t> overlap_pairs; // element indices, two per pair
-  for(std::size_t r = 0; r < recs.size();) {
-    std::size_t s = r;
-    while(s < recs.size() && recs[s].key == recs[r].key)
-      ++s;
-    if(s - r > 2) {
-      std::ostringstream msg;
-      msg << "this " << element_noun(D) << " shares the " << facet_noun(D) << " with vertices "
-          << vertex_list<D>(file, recs[r].key) << " with " << (s - r - 1) << " other " << element_plural(D)
-          << " (lines " << element_lines[recs[r].element] << ", " << element_lines[recs[r + 1].element]
-          << "): expected each " << facet_noun(D) << " in at most two " << element_plural(D)
-          << " (a manifold mesh)";
-      throw Input_error(path, element_lines[recs[r + 2].element], msg.str());
-    }
-    if(s - r == 2 && sign[recs[r].element] != 0 && sign[recs[r + 1].element] != 0) {
-      // the apexes of the two elements must lie on opposite sides of the facet
-      const std::uint32_t a = recs[r].element, b = recs[r + 1].element;
-      const std::uint32_t apex_a = mesh.elements[a][recs[r].local], apex_b = mesh.elements[b][recs[r + 1].local];
-      std::array<std::array<double, D>, D + 1> pa, pb;
-      for(int c = 0; c < D; ++c)
-        pa[c] = pb[c] = mesh.points[recs[r].key[c]];
-      pa[D] = mesh.points[apex_a];
-      pb[D] = mesh.points[apex_b];
-      const int oa = internal::exact_orientation(pa), ob = internal::exact_orientation(pb);
-      if(oa * ob >= 0) {
-        overlap_pairs.push_back(a);
-        overlap_pairs.push_back(b);
-      }
-    }
-    r = s;
-  }
-  const int majority = setup.problems.positive >= setup.problems.negative ? 1 : -1;
-  for(std::size_t i = 0; i < overlap_pairs.size(); i += 2) {
-    const std::size_t a = overlap_pairs[i], b = overlap_pairs[i + 1];
-    const bool a_odd = sign[a] != majority, b_odd = sign[b] != majority;
-    if(a_odd || !b_odd)
-      setup.problems.inverted.push_back(a);
-    if(b_odd || !a_odd)
-      setup.problems.inverted.push_back(b);
-  }
-  std::sort(setup.problems.inverted.begin(), setup.problems.inverted.end());
-  setup.problems.inverted.erase(std::unique(setup.problems.inverted.begin(), setup.problems.inverted.end()),
-                                setup.problems.inverted.end());
-
-  // Labelled facets: each must be a side of an element; those on the
-  // boundary name parts of it, those inside are ignored.
-  for(std::size_t t = 0; t < m; ++t)
-    ++setup.labels[t < mesh.element_labels.size() ? mesh.element_labels[t] : 0].elements;
-  std::vector<Labeled_facet<D>> labeled;
+  Boundary_labelled_mesh<D> view;
+  view.mesh = &mesh;
+  view.on_boundary.assign(mesh.boundary_facets.size(), 0);
   for(std::size_t f = 0; f < mesh.boundary_facets.size(); ++f) {
-    Key key = mesh.boundary_facets[f];
-    std::sort(key.begin(), key.end());
     const int label = f < mesh.boundary_labels.size() ? mesh.boundary_labels[f] : 0;
-    const auto it = std::lower_bound(recs.begin(), recs.end(), key,
-                                     [](const Rec& a, const Key& k) { return a.key < k; });
-    if(it == recs.end() || it->key != key) {
+    if(sides[f] == 0) {
       std::ostringstream msg;
       msg << "this " << facet_noun(D) << " (vertices " << vertex_list<D>(file, mesh.boundary_facets[f])
           << ", label " << label << ") is not a side of any " << element_noun(D) << ": expected "
           << facet_plural(D) << " on the boundary of the mesh";
       throw Input_error(path, file.boundary_facet_lines[f], msg.str());
     }
-    const bool interior = it + 1 != recs.end() && (it + 1)->key == key;
     Label_use& use = setup.labels[label];
-    if(interior) {
+    if(sides[f] > 1) {
       if(use.interior_facets++ == 0)
         use.first_interior_line = file.boundary_facet_lines[f];
     } else {
       ++use.boundary_facets;
-      Labeled_facet<D> lf;
-      lf.label = label;
-      for(int c = 0; c < D; ++c)
-        lf.vertices[c] = mesh.boundary_facets[f][c];
-      labeled.push_back(lf);
+      view.on_boundary[f] = 1;
     }
   }
 
-  const bool valid = setup.problems.degenerate.empty() && setup.problems.inverted.empty();
-  if(!valid) {
+  if(!setup.problems.valid()) {
     if(require_valid) {
       std::size_t line = 0;
       const std::string message = describe_problems(setup, &line);
@@ -192,7 +132,12 @@ Mesh_setup<D> make_mesh_setup(const std::string& path, const Mesh_file& file, bo
     }
     return setup;
   }
-  setup.network = make_spring_network<D>(mesh.points, mesh.elements, labeled);
+  auto extracted = extract_spring_network(view);
+  setup.network = std::move(extracted.network);
+  setup.file_vertex = std::move(extracted.handles);
+  setup.network_vertex.assign(mesh.points.size(), Mesh_setup<D>::no_vertex);
+  for(Index i = 0; i < setup.file_vertex.size(); ++i)
+    setup.network_vertex[setup.file_vertex[i]] = i;
   return setup;
 }
 
@@ -202,23 +147,56 @@ std::string describe_problems(const Mesh_setup<D>& setup, std::size_t* first_lin
   const auto& p = setup.problems;
   const auto& lines = setup.file->element_lines;
   std::ostringstream out;
-  if(!p.degenerate.empty()) {
-    out << p.degenerate.size() << " degenerate " << (p.degenerate.size() == 1 ? element_noun(D) : element_plural(D))
-        << " (zero " << (D == 2 ? "area" : "volume") << ", exact test) at " << line_list(p.degenerate, lines);
-    if(first_line)
-      *first_line = lines[p.degenerate.front()];
-  }
-  if(!p.inverted.empty()) {
-    out << (p.degenerate.empty() ? "" : "; ") << p.inverted.size() << " inverted "
-        << (p.inverted.size() == 1 ? element_noun(D) : element_plural(D)) << " (overlapping a neighbour across a shared "
-        << facet_noun(D) << ", exact test) at " << line_list(p.inverted, lines);
-    if(first_line && p.degenerate.empty())
-      *first_line = lines[p.inverted.front()];
-  }
+  const char* separator = "";
+  const auto part = [&](const std::vector<std::size_t>& elements, const std::string& what) {
+    if(elements.empty())
+      return;
+    out << separator << elements.size() << " " << what << " at " << line_list(elements, lines);
+    if(first_line && !*separator)
+      *first_line = lines[elements.front()];
+    separator = "; ";
+  };
+  const auto noun = [](std::size_t count) { return count == 1 ? element_noun(D) : element_plural(D); };
+  part(p.degenerate, std::string("degenerate ") + noun(p.degenerate.size()) + " (zero " +
+                         (D == 2 ? "area" : "volume") + ", exact test)");
+  if(p.non_manifold_facets > 0)
+    part(p.non_manifold, noun(p.non_manifold.size()) + std::string(" around ") +
+                             std::to_string(p.non_manifold_facets) + " " +
+                             (p.non_manifold_facets == 1 ? facet_noun(D) : facet_plural(D)) + " shared by more than two " +
+                             element_plural(D) + " (not a manifold)");
+  part(p.overlapping, std::string("inverted ") + noun(p.overlapping.size()) +
+                          " (overlapping a neighbour across a shared " + facet_noun(D) + ", exact test)");
   if(!out.str().empty())
-    out << ": expected a valid mesh, every " << element_noun(D) << " of positive " << (D == 2 ? "area" : "volume")
-        << " and on its own side of each " << facet_noun(D) << " it shares";
+    out << ": expected a valid mesh, every " << element_noun(D) << " of non-zero " << (D == 2 ? "area" : "volume")
+        << " and on its own side of each " << facet_noun(D) << " it shares, each " << facet_noun(D)
+        << " in at most two " << element_plural(D);
   return out.str();
+}
+
+template <int D>
+Input_error file_error(const Mesh_setup<D>& setup, const Error& error)
+{
+  const std::string message = without_source_location(error.what());
+  if(const auto* v = dynamic_cast<const Vertex_error*>(&error))
+    if(v->vertex() < setup.file_vertex.size()) {
+      // the library names the vertex "vertex <network index>": the file's number replaces it
+      std::ostringstream named;
+      named << "vertex " << setup.vertex_number(Index(v->vertex())) << " at "
+            << point_text<D>(setup.network.points[v->vertex()]);
+      const std::string network_name = "vertex " + std::to_string(v->vertex());
+      for(std::size_t at = message.find(network_name); at != std::string::npos;
+          at = message.find(network_name, at + 1)) {
+        const std::size_t end = at + network_name.size();
+        if(end == message.size() || !std::isdigit(static_cast<unsigned char>(message[end])))
+          return Input_error(setup.path, 0, message.substr(0, at) + named.str() + message.substr(end));
+      }
+      return Input_error(setup.path, 0, named.str() + ": " + message);
+    }
+  if(const auto* e = dynamic_cast<const Element_error*>(&error))
+    if(e->element() < setup.file->element_lines.size())
+      return Input_error(setup.path, setup.file->element_lines[e->element()],
+                         std::string("this ") + element_noun(D) + ": " + message);
+  return Input_error(setup.path, 0, message);
 }
 
 template <int D>
@@ -249,17 +227,7 @@ std::vector<int> resolve_labels(const Mesh_setup<D>& setup, const std::string& o
   std::vector<int> labels;
   if(list.empty())
     throw Input_error(setup.path, 0, "--" + option + " names no label (an empty set)" + valid);
-  for(const std::string& item : [&] {
-        std::vector<std::string> items;
-        std::string::size_type start = 0;
-        for(;;) {
-          const auto comma = list.find(',', start);
-          items.push_back(list.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-          if(comma == std::string::npos)
-            return items;
-          start = comma + 1;
-        }
-      }()) {
+  for(const std::string& item : split_list(list)) {
     if(item.empty())
       throw Input_error(setup.path, 0, "--" + option + " '" + list + "' has an empty item" + valid);
     int label = 0;
@@ -320,30 +288,6 @@ std::vector<Vertex_role> assign_command_line_roles(const Mesh_setup<D>& setup, c
   return roles;
 }
 
-template <int D>
-void check_roles(const Mesh_setup<D>& setup, const std::vector<Vertex_role>& roles)
-{
-  const auto& net = setup.network;
-  std::size_t moving = 0; // among the vertices some element uses
-  for(const auto& e : net.elements)
-    for(Index v : e)
-      moving += roles[v] == Vertex_role::moving;
-  if(moving == 0)
-    throw Input_error(setup.path, 0, "no vertex moves (the moving set is empty): expected a moving boundary part "
-                                     "with at least one vertex");
-  const std::vector<Index> undetermined = undetermined_vertices(net, roles);
-  const std::size_t unreached = undetermined.size();
-  const Index example = unreached > 0 ? undetermined.front() : 0;
-  if(unreached > 0) {
-    std::ostringstream msg;
-    msg << unreached << " free vertices (for instance vertex " << setup.file->vertex_ids[example] << " at "
-        << point_text<D>(net.points[example]) << ") are connected to no moving or fixed vertex, so their motion is "
-        << "undetermined (a singular system): expected every part of the mesh to touch a moving or fixed boundary "
-        << "(see --fixed)";
-    throw Input_error(setup.path, 0, msg.str());
-  }
-}
-
 #define SPRING_MOTION_CLI_INSTANTIATE(D)                                                                      \
   template Mesh_setup<D> make_mesh_setup<D>(const std::string&, const Mesh_file&, bool);                     \
   template std::string describe_problems<D>(const Mesh_setup<D>&, std::size_t*);                            \
@@ -352,7 +296,7 @@ void check_roles(const Mesh_setup<D>& setup, const std::vector<Vertex_role>& rol
   template std::vector<Vertex_role> assign_command_line_roles<D>(const Mesh_setup<D>&, const std::vector<int>&, \
                                                                  const std::vector<int>&, bool,             \
                                                                  const std::vector<char>&);                 \
-  template void check_roles<D>(const Mesh_setup<D>&, const std::vector<Vertex_role>&);
+  template Input_error file_error<D>(const Mesh_setup<D>&, const Error&);
 SPRING_MOTION_CLI_INSTANTIATE(2)
 SPRING_MOTION_CLI_INSTANTIATE(3)
 

@@ -70,7 +70,12 @@ int check(const std::string& path, const Mesh_file& file, std::ostream& out, std
   }
   out << "orientation: " << setup.problems.positive << " positive, " << setup.problems.negative << " negative, "
       << setup.problems.degenerate.size() << " degenerate (exact)\n";
-  if(!setup.problems.degenerate.empty() || !setup.problems.inverted.empty()) {
+  const auto& p = setup.problems;
+  out << "element checks (exact): " << p.degenerate.size() << " degenerate, " << p.mixed_orientation.size()
+      << " oriented against the majority, " << p.overlapping.size() << " overlapping a neighbour, "
+      << p.non_manifold_facets << " " << (D == 2 ? "edges" : "triangles") << " in more than two "
+      << (D == 2 ? "triangles" : "tetrahedra") << "\n";
+  if(!p.valid()) {
     std::size_t line = 0;
     const std::string problems = describe_problems(setup, &line);
     out << "INVALID\n";

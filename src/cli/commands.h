@@ -4,6 +4,8 @@
 #ifndef SPRING_MOTION_SRC_CLI_COMMANDS_H
 #define SPRING_MOTION_SRC_CLI_COMMANDS_H
 
+#include <spring_motion/Error.h>
+
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -28,9 +30,12 @@ enum Exit_status : int
 bool interrupted();
 void install_interrupt_handlers();
 
-/// Thrown when interrupted() is seen.
-struct Interrupted
+/// Thrown when interrupted() is seen (a spring_motion::Error like every
+/// exception of the command, with exit status 130).
+class Interrupted : public Error
 {
+public:
+  Interrupted() : Error("interrupted: the run stopped and its outputs were removed") {}
 };
 
 int deform_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err,

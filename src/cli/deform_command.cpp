@@ -190,7 +190,7 @@ struct Command_visitor
     if(c.bar)
       c.bar->update(step, std::chrono::duration<double>(Clock::now() - c.start).count());
     if(interrupted())
-      throw Interrupted{};
+      throw Interrupted();
     const bool accepted = step.inverted == 0;
     const bool last = step.step == c.settings->options.number_of_steps;
     if(accepted && (step.step % c.settings->every == 0 || last))
@@ -325,9 +325,9 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
     displacement.emplace();
     prescribed.assign(setup.network.number_of_vertices(), 0);
     for(std::size_t k = 0; k < df.vertices.size(); ++k) {
-      const std::size_t v = df.vertices[k];
-      const std::string id = std::to_string(file.vertex_ids[v]);
-      if(setup.network.adjacency_offsets[v] == setup.network.adjacency_offsets[v + 1])
+      const std::string id = std::to_string(file.vertex_ids[df.vertices[k]]);
+      const Index v = setup.network_vertex[df.vertices[k]];
+      if(v == Mesh_setup<D>::no_vertex)
         throw Input_error(df.path, df.lines[k], "vertex " + id + " belongs to no " + element_noun(D) +
                                                     ": expected a vertex of the mesh's elements");
       if(s.moving && roles[v] != Vertex_role::moving)
@@ -343,13 +343,12 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
     if(s.moving) {
       for(Index v = 0; v < roles.size(); ++v)
         if(roles[v] == Vertex_role::moving && !prescribed[v])
-          throw Input_error(df.path, 0, "no line for moving vertex " + std::to_string(file.vertex_ids[v]) +
+          throw Input_error(df.path, 0, "no line for moving vertex " + std::to_string(setup.vertex_number(v)) +
                                             ": expected a displacement for every vertex of --moving " + *s.moving);
     } else
       roles = assign_command_line_roles(setup, moving, fixed, s.fixed.has_value(), prescribed);
   }
-  check_roles(setup, roles);
-  try {
+  try { // the library checks the roles (Network_deformer) and the input mesh once more
     if(pitch)
       return run_motion<D>(s, setup, std::move(roles), *pitch, out, err, err_is_terminal);
     if(translation)
@@ -357,9 +356,14 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
     return run_motion<D>(s, setup, std::move(roles), *displacement, out, err, err_is_terminal);
   } catch(const Input_error&) {
     throw; // already names its file (an Input_error is an Error too)
+  } catch(const Usage_error&) {
+    throw;
+  } catch(const Interrupted&) {
+    throw;
   } catch(const Error& e) {
-    // the library's own checks (a model's value, a non-finite position)
-    throw Input_error(s.mesh_path, 0, without_source_location(e.what()));
+    // the library's own checks (vertex roles, a model's value, a non-finite
+    // position), naming a vertex or an element as the file does
+    throw file_error(setup, e);
   }
 }
 

@@ -60,8 +60,8 @@ int main(int argc, char** argv)
     std::cerr << "spring-motion: unknown command '" << command
               << "': expected deform, check or convert (see 'spring-motion --help')\n";
     return exit_usage_error;
-  } catch(const Interrupted&) {
-    std::cerr << "spring-motion: interrupted: the run stopped and its outputs were removed\n";
+  } catch(const Interrupted& e) {
+    std::cerr << "spring-motion: " << e.what() << "\n";
     return exit_interrupted;
   } catch(const Usage_error& e) {
     std::cerr << "spring-motion " << command << ": " << e.what() << " (see 'spring-motion " << command

@@ -71,11 +71,33 @@ void check_outputs(const std::vector<std::string>& inputs, const std::vector<Out
   }
 }
 
+namespace {
+// The file's mesh at the deformer's positions: a vertex no element uses stays where it is.
+template <int D>
+Indexed_mesh<D> moved_mesh(const Mesh_setup<D>& setup, const Network_deformer<D>& deformer)
+{
+  Indexed_mesh<D> mesh = *setup.mesh;
+  const auto& x = deformer.positions();
+  for(Index i = 0; i < x.size(); ++i)
+    mesh.points[setup.file_vertex[i]] = x[i];
+  return mesh;
+}
+} // namespace
+
 template <int D>
 void state_arrays(const Mesh_setup<D>& setup, const Network_deformer<D>& deformer, std::vector<Data_array>& point_data,
                   std::vector<Data_array>& cell_data)
 {
   motion_data_arrays(setup.network, deformer.positions(), deformer.orientation_record(), point_data, cell_data);
+  // per network vertex -> per file vertex (zero for a vertex no element uses)
+  for(Data_array& a : point_data) {
+    std::vector<double> values(setup.mesh->points.size() * std::size_t(a.components), 0.0);
+    for(std::size_t i = 0; i < setup.file_vertex.size(); ++i)
+      for(int c = 0; c < a.components; ++c)
+        values[setup.file_vertex[i] * std::size_t(a.components) + std::size_t(c)] =
+            a.values[i * std::size_t(a.components) + std::size_t(c)];
+    a.values = std::move(values);
+  }
   Data_array label{"label", 1, {}};
   label.values.reserve(setup.mesh->elements.size());
   for(std::size_t t = 0; t < setup.mesh->elements.size(); ++t)
@@ -86,8 +108,7 @@ void state_arrays(const Mesh_setup<D>& setup, const Network_deformer<D>& deforme
 template <int D>
 void write_final_mesh(const Output_file& output, const Mesh_setup<D>& setup, const Network_deformer<D>& deformer)
 {
-  Indexed_mesh<D> mesh = *setup.mesh;
-  mesh.points = deformer.positions();
+  const Indexed_mesh<D> mesh = moved_mesh(setup, deformer);
   if(output.kind == Output_file::Kind::medit)
     write_medit(mesh, output.path);
   else {
@@ -110,8 +131,7 @@ void Pvd_series::add_frame(std::size_t step, const Mesh_setup<D>& setup, const N
   char number[32];
   std::snprintf(number, sizeof number, "_%0*zu.vtu", digits_, step);
   const std::string file = stem_ + number;
-  Indexed_mesh<D> mesh = *setup.mesh;
-  mesh.points = deformer.positions();
+  const Indexed_mesh<D> mesh = moved_mesh(setup, deformer);
   std::vector<Data_array> point_data, cell_data;
   state_arrays(setup, deformer, point_data, cell_data);
   written_.push_back(file);

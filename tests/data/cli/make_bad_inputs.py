@@ -41,11 +41,19 @@ write("bad_inf.mesh", medit(vertex_text=["%s %s 0" % p for p in GRID[:4]] + ["in
 write("bad_degenerate.mesh", medit(points=GRID[:4] + [(0.25, 0)] + GRID[5:]))
 # vertex 5 pushed below the bottom edge: triangles 1 2 5 and 2 6 5 flip
 write("bad_inverted.mesh", medit(points=GRID[:4] + [(0.6, -0.2)] + GRID[5:]))
+# triangle 2 6 5 listed clockwise: oriented against the other seven, which is allowed (it overlaps nothing)
+write("mixed_orientation.mesh", medit(tris=TRIS[:3] + [(2, 5, 6)] + TRIS[4:]))
+# two more triangles below the bottom edge 1-2, which three triangles then share (not a manifold)
+write("bad_nonmanifold.mesh", medit(points=GRID + [(0.5, -0.5), (0.5, -1)], tris=TRIS + [(2, 1, 10), (2, 1, 11)]))
 # two separate squares: the second one touches no moving or fixed boundary when --fixed names only label 4
 pts2 = GRID + [(x + 2, y) for x, y in GRID]
 tris2 = TRIS + [(a + 9, b + 9, c + 9) for a, b, c in TRIS]
 edges2 = EDGES + [(a + 9, b + 9, 5) for a, b, _ in EDGES]
 write("two_parts.mesh", medit(points=pts2, tris=tris2, edges=edges2))
+# the same, after a first vertex that no triangle uses: the file's vertex numbers are one more than
+# the spring network's, so a message must name a vertex as the file does (vertex 11 at (2, 0))
+write("two_parts_unused_vertex.mesh", medit(points=[(9, 9)] + pts2, tris=[(a + 1, b + 1, c + 1) for a, b, c in tris2],
+                                            edges=[(a + 1, b + 1, r) for a, b, r in edges2]))
 # Gmsh 2.2: a NaN coordinate
 write("bad_nan.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 nan 1 0\n4 0 1 0\n"
       "$EndNodes\n$Elements\n2\n1 2 2 10 1 1 2 3\n2 2 2 10 1 1 3 4\n$EndElements\n")

@@ -1,0 +1,184 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_CHECK_INPUT_MESH_H
+#define SPRING_MOTION_CHECK_INPUT_MESH_H
+
+#include <spring_motion/Error.h>
+#include <spring_motion/internal/element_points.h>
+#include <spring_motion/internal/exact_orientation.h>
+#include <spring_motion/internal/simplex_tables.h>
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace spring_motion {
+
+/// What is wrong with a simplex mesh before it is moved, judged with exact
+/// predicates (see docs/method.md, "Validity and quality"). Every list holds
+/// element indices in increasing order. A mesh is fit to be moved (`valid()`)
+/// when it has no degenerate, overlapping or non-manifold elements; elements
+/// oriented against the majority are reported but allowed, since inversion is
+/// judged against each element's own recorded orientation.
+struct Input_mesh_problems
+{
+  std::size_t positive = 0; ///< elements of positive exact orientation
+  std::size_t negative = 0; ///< elements of negative exact orientation
+
+  /// Zero exact orientation: no area (2D) or volume (3D).
+  std::vector<std::size_t> degenerate;
+  /// Oriented against the rest: the sign the majority of the elements has
+  /// (on a tie, the sign of the first non-degenerate element) is the mesh's
+  /// orientation, and these elements have the other one. Reported, not an
+  /// error: a file may list its elements in either order.
+  std::vector<std::size_t> mixed_orientation;
+  /// Elements lying on the same side of a facet as the element they share it
+  /// with (the two overlap). Of each such pair the element oriented against
+  /// the majority is listed, both when their orientations agree.
+  std::vector<std::size_t> overlapping;
+  /// The elements around a facet that more than two elements share (the mesh
+  /// is not a manifold); `non_manifold_facets` counts those facets.
+  std::vector<std::size_t> non_manifold;
+  std::size_t non_manifold_facets = 0;
+
+  bool valid() const
+  {
+    return degenerate.empty() && overlapping.empty() && non_manifold.empty();
+  }
+};
+
+/// Checks the elements of a mesh given by `points` and `elements` (each
+/// element D + 1 indices into `points`; a `Spring_network`'s arrays or an
+/// `Indexed_mesh`'s). Throws `Element_error` for an element that uses a
+/// vertex out of range; every other problem is reported, not thrown.
+template <int D, class Points, class Elements>
+Input_mesh_problems check_input_mesh(const Points& points, const Elements& elements)
+{
+  static_assert(D == 2 || D == 3, "check_input_mesh: dimension must be 2 or 3");
+  using Tables = internal::Simplex_tables<D>;
+  using Key = std::array<std::uint32_t, D>;
+  Input_mesh_problems problems;
+  const std::size_t m = elements.size();
+  for(std::size_t t = 0; t < m; ++t)
+    for(int k = 0; k <= D; ++k)
+      SPRING_MOTION_ELEMENT_CHECK(std::size_t(elements[t][std::size_t(k)]) < points.size(), t,
+                                  "element " << t << " uses vertex " << elements[t][std::size_t(k)]
+                                             << ", out of range (" << points.size() << " vertices)");
+
+  std::vector<signed char> sign(m);
+  int first_sign = 0;
+  for(std::size_t t = 0; t < m; ++t) {
+    const int o = internal::exact_orientation(internal::element_points<D>(elements, points, t));
+    sign[t] = static_cast<signed char>(o);
+    if(o == 0)
+      problems.degenerate.push_back(t);
+    else {
+      ++(o > 0 ? problems.positive : problems.negative);
+      if(first_sign == 0)
+        first_sign = o;
+    }
+  }
+  const int majority = problems.positive != problems.negative ? (problems.positive > problems.negative ? 1 : -1)
+                                                              : first_sign;
+  for(std::size_t t = 0; t < m; ++t)
+    if(sign[t] == -majority)
+      problems.mixed_orientation.push_back(t);
+
+  // Facets as sorted vertex tuples: equal keys are one facet shared.
+  struct Rec
+  {
+    Key key;
+    std::uint32_t element;
+    int local; // the facet opposite local vertex `local`
+  };
+  std::vector<Rec> recs;
+  recs.reserve(m * (D + 1));
+  for(std::size_t t = 0; t < m; ++t)
+    for(int k = 0; k <= D; ++k) {
+      Key key;
+      for(int c = 0; c < D; ++c)
+        key[std::size_t(c)] = std::uint32_t(elements[t][std::size_t(Tables::facet[k][c])]);
+      std::sort(key.begin(), key.end());
+      recs.push_back({key, std::uint32_t(t), k});
+    }
+  std::sort(recs.begin(), recs.end(), [](const Rec& a, const Rec& b) {
+    return a.key != b.key ? a.key < b.key : a.element < b.element;
+  });
+  for(std::size_t r = 0; r < recs.size();) {
+    std::size_t s = r;
+    while(s < recs.size() && recs[s].key == recs[r].key)
+      ++s;
+    if(s - r > 2) {
+      ++problems.non_manifold_facets;
+      for(std::size_t i = r; i < s; ++i)
+        problems.non_manifold.push_back(recs[i].element);
+    } else if(s - r == 2 && sign[recs[r].element] != 0 && sign[recs[r + 1].element] != 0) {
+      // the two apexes must lie on opposite sides of the shared facet; the
+      // same sorted facet vertices for both makes the two tests comparable
+      const std::uint32_t a = recs[r].element, b = recs[r + 1].element;
+      std::array<std::array<double, D>, D + 1> pa, pb;
+      for(int c = 0; c < D; ++c)
+        pa[std::size_t(c)] = pb[std::size_t(c)] = points[recs[r].key[std::size_t(c)]];
+      pa[D] = points[elements[a][std::size_t(recs[r].local)]];
+      pb[D] = points[elements[b][std::size_t(recs[r + 1].local)]];
+      if(internal::exact_orientation(pa) * internal::exact_orientation(pb) >= 0) {
+        const bool a_odd = sign[a] != majority, b_odd = sign[b] != majority;
+        if(a_odd || !b_odd)
+          problems.overlapping.push_back(a);
+        if(b_odd || !a_odd)
+          problems.overlapping.push_back(b);
+      }
+    }
+    r = s;
+  }
+  for(auto* list : {&problems.overlapping, &problems.non_manifold}) {
+    std::sort(list->begin(), list->end());
+    list->erase(std::unique(list->begin(), list->end()), list->end());
+  }
+  return problems;
+}
+
+/// The first problem element: the first degenerate one, else the first
+/// around a non-manifold facet, else the first overlapping one. `problems`
+/// must not be valid.
+inline std::size_t first_problem_element(const Input_mesh_problems& problems)
+{
+  for(const auto* list : {&problems.degenerate, &problems.non_manifold, &problems.overlapping})
+    if(!list->empty())
+      return list->front();
+  return 0;
+}
+
+/// "1 degenerate element(s) in the input mesh (zero area or volume, exact
+/// test): 4": what `Element_error` says about an invalid input mesh, one
+/// such part per kind of problem, with the first few elements of each.
+inline std::string describe_input_mesh_problems(const Input_mesh_problems& problems)
+{
+  std::ostringstream out;
+  const char* separator = "";
+  const auto part = [&](std::size_t count, const char* what, const std::vector<std::size_t>& elements) {
+    if(count == 0)
+      return;
+    out << separator << count << " " << what << ": ";
+    for(std::size_t i = 0; i < std::min<std::size_t>(5, elements.size()); ++i)
+      out << (i ? ", " : "") << elements[i];
+    out << (elements.size() > 5 ? ", ..." : "");
+    separator = "; ";
+  };
+  part(problems.degenerate.size(), "degenerate element(s) in the input mesh (zero area or volume, exact test)",
+       problems.degenerate);
+  part(problems.non_manifold_facets,
+       "facet(s) shared by more than two elements in the input mesh (not a manifold), around elements",
+       problems.non_manifold);
+  part(problems.overlapping.size(),
+       "element(s) overlapping a neighbour in the input mesh (on the same side of the facet they share, exact test)",
+       problems.overlapping);
+  return out.str();
+}
+
+} // namespace spring_motion
+
+#endif

@@ -40,6 +40,7 @@ struct Mesh_file
 /// Reads a mesh file, choosing the format by extension (case-insensitive):
 ///  - `.mesh`: Medit ASCII (see `read_medit()`),
 ///  - `.msh`:  Gmsh ASCII or binary, format 2.2 or 4.1 (see `read_gmsh()`).
+///  - `.su2`:  SU2 native mesh, single zone (see `read_su2()`).
 ///
 /// How the dimension is decided, for both formats:
 ///  - tetrahedra present: a 3D mesh; triangles are its labelled boundary facets;
@@ -102,6 +103,29 @@ Mesh_file read_medit(std::istream& in, const std::string& name_for_errors);
 /// \param name_for_errors the file name used in error messages.
 /// \throws Input_error, also for formats other than 2.x, 4.1.
 Mesh_file read_gmsh(std::istream& in, const std::string& name_for_errors);
+
+/// Reads an SU2 native mesh (`.su2`, ASCII, one zone).
+///
+/// Keywords: `NDIME=` (2 or 3) first, then `NELEM=` (elements: the VTK type,
+/// the 0-based vertex indices, an optional index column), `NPOIN=` (points:
+/// NDIME coordinates and an optional index column; an optional second count
+/// on the `NPOIN=` line is ignored), `NMARK=` with, per marker, `MARKER_TAG=`
+/// and `MARKER_ELEMS=` (boundary elements). Elements must be triangles (type
+/// 5) when NDIME= 2 and tetrahedra (type 10) when NDIME= 3, boundary elements
+/// lines (3) or triangles (5): any other type is an error naming it. `%`
+/// starts a comment. `NZONE=`/`IZONE=` other than 1 are an error; other
+/// keywords (FFD boxes...) are skipped up to the next `KEYWORD=`.
+///
+/// Markers become boundary labels, named by their tag (`label_names`): a
+/// comment `% label N: NAME` (as `write_su2()` writes them) gives the tag
+/// NAME the number N; a tag that is an integer is that label, without a
+/// name; any other tag gets the smallest positive number not otherwise
+/// used, in file order. Elements have no labels in SU2 (all 0). Vertex ids
+/// (`Mesh_file::vertex_ids`) are SU2's 0-based indices.
+///
+/// \param name_for_errors the file name used in error messages.
+/// \throws Input_error naming the file and the line.
+Mesh_file read_su2(std::istream& in, const std::string& name_for_errors);
 
 } // namespace spring_motion
 

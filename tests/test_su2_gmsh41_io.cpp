@@ -102,14 +102,21 @@ Indexed_mesh<D> awkward_mesh(const Indexed_mesh<D>& shape, std::uint64_t seed)
   return mesh;
 }
 
+enum class Format { gmsh_ascii, gmsh_binary, su2 };
+const Format formats[] = {Format::gmsh_ascii, Format::gmsh_binary, Format::su2};
+
 template <int D>
-void check_round_trip(const Indexed_mesh<D>& mesh, bool su2)
+void check_round_trip(const Indexed_mesh<D>& mesh, Format format)
 {
+  const bool su2 = format == Format::su2;
   std::ostringstream out;
   if(su2)
     spring_motion::write_su2(mesh, out);
   else
-    spring_motion::write_gmsh(mesh, out);
+    spring_motion::write_gmsh(mesh, out, format == Format::gmsh_binary ? spring_motion::Gmsh_encoding::binary
+                                                                       : spring_motion::Gmsh_encoding::ascii);
+  if(format == Format::gmsh_binary)
+    CHECK(out.str().compare(0, 20, "$MeshFormat\n4.1 1 8\n") == 0);
   std::istringstream in(out.str());
   const Mesh_file back = su2 ? spring_motion::read_su2(in, "round-trip") : spring_motion::read_gmsh(in, "round-trip");
   REQUIRE(back.dimension == D);
@@ -245,17 +252,17 @@ TEST_CASE("read_su2: hostile files name the line", "[read_mesh][su2][errors]")
   }
 }
 
-TEST_CASE("write_gmsh and write_su2: the data files come back bit for bit", "[write_mesh][gmsh][su2]")
+TEST_CASE("write_gmsh (ASCII, binary) and write_su2: the data files come back bit for bit", "[write_mesh][gmsh][su2]")
 {
   for(const char* name : {"square_hole_v41.msh", "square_2d.mesh", "box_3d_v41.msh", "cube_3d.mesh"}) {
     INFO(name);
     const Mesh_file f = spring_motion::read_mesh(data_path(name));
-    for(bool su2 : {false, true}) {
-      INFO("su2 " << su2);
+    for(Format format : formats) {
+      INFO("format " << static_cast<int>(format));
       if(f.dimension == 2)
-        check_round_trip(f.mesh_2, su2);
+        check_round_trip(f.mesh_2, format);
       else
-        check_round_trip(f.mesh_3, su2);
+        check_round_trip(f.mesh_3, format);
     }
   }
 }
@@ -276,10 +283,10 @@ TEST_CASE("write_gmsh and write_su2: awkward doubles and labels round-trip exact
       m2.boundary_labels[i] = i % 4 == 0 ? 0 : m2.boundary_labels[i];
     m2.label_names = {{1, "outer wall"}, {2, "17"}, {-1, "minus"}};
     m3.label_names[3] = "walls and more";
-    for(bool su2 : {false, true}) {
-      INFO("su2 " << su2);
-      check_round_trip(m2, su2);
-      check_round_trip(m3, su2);
+    for(Format format : formats) {
+      INFO("format " << static_cast<int>(format));
+      check_round_trip(m2, format);
+      check_round_trip(m3, format);
     }
   }
 }
@@ -296,6 +303,19 @@ TEST_CASE("write_gmsh: gmsh itself reads the output", "[write_mesh][gmsh][.gmsh]
   CHECK(g.mesh_3.points == f.mesh_3.points);
   CHECK(g.mesh_3.elements.size() == f.mesh_3.elements.size());
   CHECK(g.mesh_3.label_names == f.mesh_3.label_names);
+  // The binary output, through gmsh to ASCII 4.1.
+  spring_motion::write_gmsh(f.mesh_3, path, spring_motion::Gmsh_encoding::binary);
+  REQUIRE(std::system(("gmsh " + path + " -save -format msh41 -o " + copy + " > /dev/null 2>&1").c_str()) == 0);
+  const Mesh_file h = spring_motion::read_mesh(copy);
+  CHECK(h.mesh_3.points == f.mesh_3.points);
+  CHECK(h.mesh_3.elements == f.mesh_3.elements);
+  // gmsh orders the facets by entity, that is by label.
+  std::multimap<int, std::array<std::uint32_t, 3>> a, b;
+  for(std::size_t i = 0; i < f.mesh_3.boundary_facets.size(); ++i)
+    a.emplace(f.mesh_3.boundary_labels[i], f.mesh_3.boundary_facets[i]);
+  for(std::size_t i = 0; i < h.mesh_3.boundary_facets.size(); ++i)
+    b.emplace(h.mesh_3.boundary_labels[i], h.mesh_3.boundary_facets[i]);
+  CHECK(a == b);
   std::remove(path.c_str());
   std::remove(copy.c_str());
 }

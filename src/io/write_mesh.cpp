@@ -392,10 +392,77 @@ bool usable_marker_tag(const std::string& name)
 
 } // namespace
 
+namespace {
+
+// The numbers of a Gmsh 4.1 file, as text (separated by blanks, one entry
+// per line) or in binary (int: 4 bytes, size_t and double: 8 bytes, in the
+// machine's byte order, as gmsh writes them).
+class Gmsh_emitter
+{
+public:
+  Gmsh_emitter(Text_writer& w, bool binary) : w_(w), binary_(binary) {}
+
+  void text(const std::string& t)
+  {
+    w_ << t;
+    fresh_line_ = true;
+  }
+  void int32(std::int64_t v) { number(v, 4); }
+  void size(std::size_t v) { number(static_cast<std::int64_t>(v), 8); }
+  void real(double v)
+  {
+    if(binary_) {
+      raw(&v, 8);
+      return;
+    }
+    separate();
+    w_ << v;
+  }
+  void end_line()
+  {
+    if(!binary_)
+      w_ << '\n';
+    fresh_line_ = true;
+  }
+  // Binary data end with a newline before the closing keyword.
+  void end_section(const std::string& keyword) { text(std::string(binary_ ? "\n" : "") + keyword + "\n"); }
+
+private:
+  void number(std::int64_t v, int bytes)
+  {
+    if(binary_) {
+      if(bytes == 4) {
+        const std::int32_t i = static_cast<std::int32_t>(v);
+        raw(&i, 4);
+      } else {
+        const std::uint64_t u = static_cast<std::uint64_t>(v);
+        raw(&u, 8);
+      }
+      return;
+    }
+    separate();
+    w_ << v;
+  }
+  void separate()
+  {
+    if(!fresh_line_)
+      w_ << ' ';
+    fresh_line_ = false;
+  }
+  void raw(const void* p, std::size_t n) { w_ << std::string(static_cast<const char*>(p), n); }
+
+  Text_writer& w_;
+  bool binary_;
+  bool fresh_line_ = true;
+};
+
+} // namespace
+
 template <int D>
-void write_gmsh(const Indexed_mesh<D>& mesh, std::ostream& out)
+void write_gmsh(const Indexed_mesh<D>& mesh, std::ostream& out, Gmsh_encoding encoding)
 {
   check_mesh(mesh);
+  const bool binary = encoding == Gmsh_encoding::binary;
   const std::vector<Run> facet_runs = label_runs(mesh.boundary_facets, mesh.boundary_labels);
   const std::vector<Run> element_runs = label_runs(mesh.elements, mesh.element_labels);
   // One entity per label and dimension, tagged 1, 2, ... in label order,
@@ -407,8 +474,15 @@ void write_gmsh(const Indexed_mesh<D>& mesh, std::ostream& out)
   };
 
   Text_writer w(out);
-  w << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  // Names of the labels in use, for each dimension that uses them.
+  Gmsh_emitter e(w, binary);
+  e.text(binary ? "$MeshFormat\n4.1 1 8\n" : "$MeshFormat\n4.1 0 8\n");
+  if(binary) {
+    e.int32(1); // tells the reader the byte order
+    e.text("\n");
+  }
+  e.text("$EndMeshFormat\n");
+  // Names of the labels in use, for each dimension that uses them (text in
+  // binary files too).
   std::vector<std::pair<int, int>> named; // (dimension, label)
   for(int label : facet_labels)
     if(mesh.label_names.count(label) != 0)
@@ -425,80 +499,106 @@ void write_gmsh(const Indexed_mesh<D>& mesh, std::ostream& out)
 
   // Bounding boxes of the entities, from the vertices of their simplices.
   const auto write_entities = [&](const auto& simplices, const std::vector<int>& simplex_labels,
-                                  const std::vector<int>& labels, bool with_bounding_count) {
-    for(std::size_t e = 0; e < labels.size(); ++e) {
+                                  const std::vector<int>& labels) {
+    for(std::size_t k = 0; k < labels.size(); ++k) {
       std::array<double, 3> low{0, 0, 0}, high{0, 0, 0};
       bool first = true;
       for(std::size_t i = 0; i < simplices.size(); ++i) {
-        if((simplex_labels.empty() ? 0 : simplex_labels[i]) != labels[e])
+        if((simplex_labels.empty() ? 0 : simplex_labels[i]) != labels[k])
           continue;
         for(std::uint32_t v : simplices[i])
-          for(std::size_t k = 0; k < std::size_t(D); ++k) {
-            const double x = mesh.points[v][k];
-            low[k] = first ? x : std::min(low[k], x);
-            high[k] = first ? x : std::max(high[k], x);
+          for(std::size_t c = 0; c < std::size_t(D); ++c) {
+            const double x = mesh.points[v][c];
+            low[c] = first ? x : std::min(low[c], x);
+            high[c] = first ? x : std::max(high[c], x);
           }
         first = false;
       }
-      w << (e + 1) << ' ' << low[0] << ' ' << low[1] << ' ' << low[2] << ' ' << high[0] << ' ' << high[1] << ' '
-        << high[2];
-      if(labels[e] != 0)
-        w << " 1 " << labels[e];
-      else
-        w << " 0";
-      if(with_bounding_count)
-        w << " 0";
-      w << '\n';
+      e.int32(static_cast<std::int64_t>(k + 1));
+      for(double x : low)
+        e.real(x);
+      for(double x : high)
+        e.real(x);
+      e.size(labels[k] != 0 ? 1 : 0);
+      if(labels[k] != 0)
+        e.int32(labels[k]);
+      e.size(0); // no bounding entities
+      e.end_line();
     }
   };
-  w << "$Entities\n0 " << (D == 2 ? facet_labels.size() : std::size_t(0)) << ' '
-    << (D == 2 ? element_labels.size() : facet_labels.size()) << ' '
-    << (D == 3 ? element_labels.size() : std::size_t(0)) << '\n';
-  write_entities(mesh.boundary_facets, mesh.boundary_labels, facet_labels, true);
-  write_entities(mesh.elements, mesh.element_labels, element_labels, true);
-  w << "$EndEntities\n";
+  e.text("$Entities\n");
+  e.size(0);
+  e.size(D == 2 ? facet_labels.size() : 0);
+  e.size(D == 2 ? element_labels.size() : facet_labels.size());
+  e.size(D == 3 ? element_labels.size() : 0);
+  e.end_line();
+  write_entities(mesh.boundary_facets, mesh.boundary_labels, facet_labels);
+  write_entities(mesh.elements, mesh.element_labels, element_labels);
+  e.end_section("$EndEntities");
 
   // All nodes in one block, on the first entity of the mesh's dimension
-  // (gmsh needs an entity; the first element block's is as good as any).
+  // (gmsh needs an entity; any will do).
   const std::size_t n = mesh.points.size();
-  w << "$Nodes\n" << (n > 0 ? 1 : 0) << ' ' << n << ' ' << (n > 0 ? 1 : 0) << ' ' << n << '\n';
+  e.text("$Nodes\n");
+  e.size(n > 0 ? 1 : 0);
+  e.size(n);
+  e.size(n > 0 ? 1 : 0);
+  e.size(n);
+  e.end_line();
   if(n > 0) {
-    w << D << ' ' << (element_labels.empty() ? std::int64_t(1) : entity_of(element_labels, element_labels[0]))
-      << " 0 " << n << '\n';
-    for(std::size_t i = 0; i < n; ++i)
-      w << (i + 1) << '\n';
-    for(const auto& p : mesh.points)
-      w << p[0] << ' ' << p[1] << ' ' << (D == 3 ? p[D - 1] : 0.0) << '\n';
+    e.int32(D);
+    e.int32(1);
+    e.int32(0);
+    e.size(n);
+    e.end_line();
+    for(std::size_t i = 0; i < n; ++i) {
+      e.size(i + 1);
+      e.end_line();
+    }
+    for(const auto& p : mesh.points) {
+      e.real(p[0]);
+      e.real(p[1]);
+      e.real(D == 3 ? p[D - 1] : 0.0);
+      e.end_line();
+    }
   }
-  w << "$EndNodes\n";
+  e.end_section("$EndNodes");
 
   const std::size_t count = mesh.boundary_facets.size() + mesh.elements.size();
-  w << "$Elements\n" << (facet_runs.size() + element_runs.size()) << ' ' << count << ' ' << (count > 0 ? 1 : 0)
-    << ' ' << count << '\n';
+  e.text("$Elements\n");
+  e.size(facet_runs.size() + element_runs.size());
+  e.size(count);
+  e.size(count > 0 ? 1 : 0);
+  e.size(count);
+  e.end_line();
   std::size_t tag = 0;
   const auto write_blocks = [&](const auto& simplices, const std::vector<Run>& runs, const std::vector<int>& labels,
                                 int dimension, int type) {
     for(const Run& r : runs) {
-      w << dimension << ' ' << entity_of(labels, r.label) << ' ' << type << ' ' << (r.end - r.first) << '\n';
+      e.int32(dimension);
+      e.int32(entity_of(labels, r.label));
+      e.int32(type);
+      e.size(r.end - r.first);
+      e.end_line();
       for(std::size_t i = r.first; i < r.end; ++i) {
-        w << ++tag;
+        e.size(++tag);
         for(std::uint32_t v : simplices[i])
-          w << ' ' << (v + std::int64_t(1));
-        w << '\n';
+          e.size(std::size_t(v) + 1);
+        e.end_line();
       }
     }
   };
   // Gmsh types: 1 line, 2 triangle, 4 tetrahedron.
   write_blocks(mesh.boundary_facets, facet_runs, facet_labels, D - 1, D == 2 ? 1 : 2);
   write_blocks(mesh.elements, element_runs, element_labels, D, D == 2 ? 2 : 4);
-  w << "$EndElements\n";
+  e.end_section("$EndElements");
 }
 
 template <int D>
-void write_gmsh(const Indexed_mesh<D>& mesh, const std::string& path)
+void write_gmsh(const Indexed_mesh<D>& mesh, const std::string& path, Gmsh_encoding encoding)
 {
   check_mesh(mesh);
-  write_atomically(path, [&mesh](std::ostream& out) { write_gmsh(mesh, out); });
+  write_atomically(path, [&mesh, encoding](std::ostream& out) { write_gmsh(mesh, out, encoding); });
 }
 
 template <int D>
@@ -638,10 +738,10 @@ template void write_medit<2>(const Indexed_mesh<2>&, std::ostream&);
 template void write_medit<3>(const Indexed_mesh<3>&, std::ostream&);
 template void write_medit<2>(const Indexed_mesh<2>&, const std::string&);
 template void write_medit<3>(const Indexed_mesh<3>&, const std::string&);
-template void write_gmsh<2>(const Indexed_mesh<2>&, std::ostream&);
-template void write_gmsh<3>(const Indexed_mesh<3>&, std::ostream&);
-template void write_gmsh<2>(const Indexed_mesh<2>&, const std::string&);
-template void write_gmsh<3>(const Indexed_mesh<3>&, const std::string&);
+template void write_gmsh<2>(const Indexed_mesh<2>&, std::ostream&, Gmsh_encoding);
+template void write_gmsh<3>(const Indexed_mesh<3>&, std::ostream&, Gmsh_encoding);
+template void write_gmsh<2>(const Indexed_mesh<2>&, const std::string&, Gmsh_encoding);
+template void write_gmsh<3>(const Indexed_mesh<3>&, const std::string&, Gmsh_encoding);
 template void write_su2<2>(const Indexed_mesh<2>&, std::ostream&);
 template void write_su2<3>(const Indexed_mesh<3>&, std::ostream&);
 template void write_su2<2>(const Indexed_mesh<2>&, const std::string&);

@@ -57,11 +57,15 @@ void write_medit(const Indexed_mesh<D>& mesh, const std::string& path);
 /// run of equal labels so that their order is kept. Coordinates are written
 /// in the shortest form that reads back to the same double: `read_gmsh()`
 /// returns the same mesh bit for bit, with `label_names` restricted to the
-/// labels in use.
+/// labels in use. `Gmsh_encoding::binary` writes the same as `gmsh -bin`
+/// does (format 4.1, file type 1: the numbers in binary, in this machine's
+/// byte order, marked by the integer 1; `$PhysicalNames` as text).
+enum class Gmsh_encoding { ascii, binary };
 template <int D>
-void write_gmsh(const Indexed_mesh<D>& mesh, std::ostream& out);
+void write_gmsh(const Indexed_mesh<D>& mesh, std::ostream& out, Gmsh_encoding encoding = Gmsh_encoding::ascii);
 template <int D>
-void write_gmsh(const Indexed_mesh<D>& mesh, const std::string& path);
+void write_gmsh(const Indexed_mesh<D>& mesh, const std::string& path,
+                Gmsh_encoding encoding = Gmsh_encoding::ascii);
 
 /// SU2 native mesh (single zone): `NDIME=`, `NELEM=` (VTK types 5 or 10,
 /// 0-based indices, index column), `NPOIN=` (index column), `NMARK=` with one

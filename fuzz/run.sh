@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets (clang++-14, ASan + UBSan) and runs each for
 # SECONDS (default 600), one after the other, from its seed corpus.
 #
-#   fuzz/run.sh [SECONDS] [TARGET...]        TARGET: read_medit read_gmsh deform
+#   fuzz/run.sh [SECONDS] [TARGET...]        TARGET: read_medit read_gmsh read_gmsh_binary read_su2 deform
 #
 # Build dir: $FUZZ_BUILD_DIR (default build-fuzz beside fuzz/). New corpus
 # entries go to $FUZZ_BUILD_DIR/corpus/<target> (the seeds in fuzz/corpus
@@ -14,7 +14,7 @@ here="$(cd "$(dirname "$0")" && pwd)"
 seconds="${1:-600}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(read_medit read_gmsh deform)
+[ ${#targets[@]} -gt 0 ] || targets=(read_medit read_gmsh read_gmsh_binary read_su2 deform)
 build="${FUZZ_BUILD_DIR:-$here/../build-fuzz}"
 # The library's own dependencies, then clang 14 with libFuzzer (Debian packages).
 bash "$here/../scripts/install_dependencies.sh" || exit 2

@@ -285,6 +285,11 @@ TEST_CASE("write_mesh: format by extension", "[write_mesh]")
   CHECK(spring_motion::read_mesh(directory.file("a.MESH")).mesh_3.elements == file.mesh_3.elements);
   spring_motion::write_mesh(directory.file("a.vtu"), file.mesh_3);
   CHECK(read_text(directory.file("a.vtu")).find("<VTKFile") != std::string::npos);
+  spring_motion::write_mesh(directory.file("a.Msh"), file.mesh_3);
+  CHECK(read_text(directory.file("a.Msh")).rfind("$MeshFormat\n4.1 0 8\n", 0) == 0);
+  CHECK(spring_motion::read_mesh(directory.file("a.Msh")).mesh_3.elements == file.mesh_3.elements);
+  spring_motion::write_mesh(directory.file("a.su2"), file.mesh_3);
+  CHECK(spring_motion::read_mesh(directory.file("a.su2")).mesh_3.elements == file.mesh_3.elements);
 
   const std::string wrong = directory.file("a.stl");
   try {
@@ -292,9 +297,11 @@ TEST_CASE("write_mesh: format by extension", "[write_mesh]")
     FAIL("no exception");
   } catch(const Input_error& e) {
     CHECK(e.file() == wrong);
-    CHECK(e.message() == "unknown output extension '.stl': expected .vtu (VTK XML) or .mesh (Medit ASCII)");
+    CHECK(e.message()
+          == "unknown output extension '.stl': expected .vtu (VTK XML), .mesh (Medit ASCII), .msh (Gmsh 4.1 "
+             "ASCII) or .su2 (SU2)");
   }
-  CHECK(directory.number_of_entries() == 2);
+  CHECK(directory.number_of_entries() == 4);
 }
 
 TEST_CASE("Pvd_writer: lists the steps, relative to the collection", "[write_mesh][pvd]")
@@ -358,7 +365,7 @@ TEST_CASE("write_mesh: a failed write leaves no file", "[write_mesh][errors]")
   const std::string old_file = directory.file("old.vtu");
   std::ofstream(old_file) << "old";
   const Data_array wrong_size{"skewness", 1, std::vector<double>(3, 0.0)};
-  CHECK_THROWS_AS(spring_motion::write_vtu(file.mesh_2, old_file, {}, {wrong_size}), std::invalid_argument);
+  CHECK_THROWS_AS(spring_motion::write_vtu(file.mesh_2, old_file, {}, {wrong_size}), spring_motion::Error);
   CHECK(read_text(old_file) == "old");
   CHECK(directory.number_of_entries() == 2);
 
@@ -375,12 +382,12 @@ TEST_CASE("write_vtu: inconsistent meshes and data are refused", "[write_mesh][e
   mesh.elements = {{0, 1, 2}};
   std::ostringstream out;
   CHECK_NOTHROW(spring_motion::write_vtu(mesh, out));
-  CHECK_THROWS_AS(spring_motion::write_vtu(mesh, out, {{"", 1, {0, 0, 0}}}), std::invalid_argument);
-  CHECK_THROWS_AS(spring_motion::write_vtu(mesh, out, {{"d", 0, {}}}), std::invalid_argument);
-  CHECK_THROWS_AS(spring_motion::write_vtu(mesh, out, {{"d", 2, {0, 0, 0}}}), std::invalid_argument);
+  CHECK_THROWS_AS(spring_motion::write_vtu(mesh, out, {{"", 1, {0, 0, 0}}}), spring_motion::Error);
+  CHECK_THROWS_AS(spring_motion::write_vtu(mesh, out, {{"d", 0, {}}}), spring_motion::Error);
+  CHECK_THROWS_AS(spring_motion::write_vtu(mesh, out, {{"d", 2, {0, 0, 0}}}), spring_motion::Error);
   mesh.element_labels = {1, 2};
-  CHECK_THROWS_AS(spring_motion::write_medit(mesh, out), std::invalid_argument);
+  CHECK_THROWS_AS(spring_motion::write_medit(mesh, out), spring_motion::Error);
   mesh.element_labels.clear();
   mesh.elements.push_back({0, 1, 3});
-  CHECK_THROWS_AS(spring_motion::write_medit(mesh, out), std::invalid_argument);
+  CHECK_THROWS_AS(spring_motion::write_medit(mesh, out), spring_motion::Error);
 }

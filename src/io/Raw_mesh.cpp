@@ -19,7 +19,7 @@ std::string format_double(double value)
   return out.str();
 }
 
-[[noreturn]] void fail_unsupported(const Unsupported_elements& u, const Token_reader& reader,
+[[noreturn]] void fail_unsupported(const Unsupported_elements& u, const Error_reporter& reader,
                                    const char* expected)
 {
   reader.fail_at(u.first_line, "unsupported elements (" + u.first_kind + ", " + std::to_string(u.count)
@@ -53,7 +53,7 @@ void fill_vertex_ids(Mesh_file& result, Raw_mesh& raw, std::size_t n)
 // volume mesh, a line mesh next to a triangle mesh).
 template <int D>
 void check_facets_use_element_vertices(const Indexed_mesh<D>& mesh, const Mesh_file& file,
-                                       const Token_reader& reader, const char* facet, const char* element)
+                                       const Error_reporter& reader, const char* facet, const char* element)
 {
   std::vector<char> used(mesh.points.size(), 0);
   for(const auto& e : mesh.elements)
@@ -69,6 +69,18 @@ void check_facets_use_element_vertices(const Indexed_mesh<D>& mesh, const Mesh_f
                          + "D mesh only)");
 }
 
+// A binary file has no lines: its positions go to the offsets, and the lines
+// are 0 ("no line"), which callers that only know lines print as the file.
+void move_offsets(Mesh_file& result, bool byte_offsets)
+{
+  if(!byte_offsets)
+    return;
+  result.element_offsets = std::move(result.element_lines);
+  result.boundary_facet_offsets = std::move(result.boundary_facet_lines);
+  result.element_lines.assign(result.element_offsets.size(), 0);
+  result.boundary_facet_lines.assign(result.boundary_facet_offsets.size(), 0);
+}
+
 } // namespace
 
 std::string entry_suffix(const std::string& section, std::size_t entry_index)
@@ -77,7 +89,7 @@ std::string entry_suffix(const std::string& section, std::size_t entry_index)
 }
 
 template <std::size_t N>
-void check_distinct_vertices(const std::array<std::uint32_t, N>& simplex, const Token_reader& reader,
+void check_distinct_vertices(const std::array<std::uint32_t, N>& simplex, const Error_reporter& reader,
                              const std::string& section, std::size_t entry_index)
 {
   for(std::size_t i = 0; i < N; ++i)
@@ -129,14 +141,14 @@ template std::size_t remove_duplicate_simplices<3>(std::vector<std::array<std::u
                                                       std::vector<std::size_t>&);
 template std::size_t remove_duplicate_simplices<4>(std::vector<std::array<std::uint32_t, 4>>&, std::vector<int>&,
                                                       std::vector<std::size_t>&);
-template void check_distinct_vertices<2>(const std::array<std::uint32_t, 2>&, const Token_reader&,
+template void check_distinct_vertices<2>(const std::array<std::uint32_t, 2>&, const Error_reporter&,
                                          const std::string&, std::size_t);
-template void check_distinct_vertices<3>(const std::array<std::uint32_t, 3>&, const Token_reader&,
+template void check_distinct_vertices<3>(const std::array<std::uint32_t, 3>&, const Error_reporter&,
                                          const std::string&, std::size_t);
-template void check_distinct_vertices<4>(const std::array<std::uint32_t, 4>&, const Token_reader&,
+template void check_distinct_vertices<4>(const std::array<std::uint32_t, 4>&, const Error_reporter&,
                                          const std::string&, std::size_t);
 
-Mesh_file finish_mesh(Raw_mesh&& raw, const Token_reader& reader)
+Mesh_file finish_mesh(Raw_mesh&& raw, const Error_reporter& reader)
 {
   Mesh_file result;
   if(!raw.tetrahedra.empty()) {
@@ -154,6 +166,7 @@ Mesh_file finish_mesh(Raw_mesh&& raw, const Token_reader& reader)
     result.boundary_facet_lines = std::move(raw.triangle_lines);
     fill_vertex_ids(result, raw, mesh.points.size());
     check_facets_use_element_vertices(mesh, result, reader, "triangle", "tetrahedron");
+    move_offsets(result, raw.byte_offsets);
     return result;
   }
 
@@ -183,6 +196,7 @@ Mesh_file finish_mesh(Raw_mesh&& raw, const Token_reader& reader)
     result.boundary_facet_lines = std::move(raw.edge_lines);
     fill_vertex_ids(result, raw, mesh.points.size());
     check_facets_use_element_vertices(mesh, result, reader, "edge", "triangle");
+    move_offsets(result, raw.byte_offsets);
     return result;
   }
 

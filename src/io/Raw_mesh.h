@@ -29,6 +29,9 @@ struct Unsupported_elements
 
 struct Raw_mesh
 {
+  /// The `*_lines` below, and the other positions, are byte offsets (binary
+  /// files) rather than 1-based lines.
+  bool byte_offsets = false;
   std::vector<std::array<double, 3>> points;
   std::vector<std::int64_t> point_ids; // the file's vertex numbers (Gmsh node tags); empty: 1, 2, ...
   std::vector<std::array<std::uint32_t, 4>> tetrahedra;
@@ -74,8 +77,8 @@ struct Raw_mesh
 
 /// Decides the dimension (tetrahedra: 3D; else triangles: 2D; else an error)
 /// and moves the data into the matching `Indexed_mesh`. `reader` names the
-/// file in errors; its current line is used when no better one is known.
-Mesh_file finish_mesh(Raw_mesh&& raw, const Token_reader& reader);
+/// file in errors; its current position is used when no better one is known.
+Mesh_file finish_mesh(Raw_mesh&& raw, const Error_reporter& reader);
 
 /// Removes the later copies of elements with the same vertex set (and their
 /// labels and lines), keeping the first; returns how many were removed.
@@ -88,7 +91,7 @@ std::string entry_suffix(const std::string& section, std::size_t entry_index);
 
 /// Checks that the N vertex indices of a simplex are distinct.
 template <std::size_t N>
-void check_distinct_vertices(const std::array<std::uint32_t, N>& simplex, const Token_reader& reader,
+void check_distinct_vertices(const std::array<std::uint32_t, N>& simplex, const Error_reporter& reader,
                              const std::string& section, std::size_t entry_index);
 
 } // namespace io_internal

@@ -22,7 +22,7 @@ bool is_blank(char c)
 } // namespace
 
 Token_reader::Token_reader(std::istream& in, std::string file_name)
-  : in_(in), file_name_(std::move(file_name))
+  : Error_reporter(std::move(file_name), false), in_(in)
 {
   // The size of what is left bounds every reserve(); streams that cannot seek
   // (pipes) simply get a fixed bound.
@@ -50,6 +50,7 @@ bool Token_reader::read_line()
     return false;
   }
   ++line_number_;
+  bytes_consumed_ += current_line_.size() + (in_.eof() ? 0 : 1);
   position_ = 0;
   // Editors on Windows may start a text file with a UTF-8 byte order mark.
   if(line_number_ == 1 && current_line_.compare(0, 3, "\xEF\xBB\xBF") == 0)
@@ -95,16 +96,6 @@ std::string_view Token_reader::rest_of_line()
   std::string_view rest = std::string_view(current_line_).substr(position_);
   position_ = current_line_.size();
   return rest;
-}
-
-void Token_reader::fail(const std::string& message) const
-{
-  throw Input_error(file_name_, line_number_, message);
-}
-
-void Token_reader::fail_at(std::size_t line, const std::string& message) const
-{
-  throw Input_error(file_name_, line, message);
 }
 
 std::string Token_reader::progress_suffix() const

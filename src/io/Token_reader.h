@@ -12,9 +12,41 @@
 #include <istream>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace spring_motion {
 namespace io_internal {
+
+/// Where a reader reports an error: at a line of a text file, at a byte
+/// offset of a binary one ("file.msh: byte 1234: ..."). What the code shared
+/// by the readers (finish_mesh) needs to point into the file.
+class Error_reporter
+{
+public:
+  /// At the current position.
+  [[noreturn]] void fail(const std::string& message) const { fail_at(current_position(), message); }
+  /// At `position`: a 1-based line (0: none), or a byte offset for a binary reader.
+  [[noreturn]] void fail_at(std::size_t position, const std::string& message) const
+  {
+    if(byte_offsets_)
+      throw Input_error(file_name_, 0, "byte " + std::to_string(position) + ": " + message);
+    throw Input_error(file_name_, position, message);
+  }
+  const std::string& file_name() const { return file_name_; }
+
+protected:
+  Error_reporter(std::string file_name, bool byte_offsets)
+    : file_name_(std::move(file_name)), byte_offsets_(byte_offsets)
+  {}
+  Error_reporter(const Error_reporter&) = default;
+  Error_reporter& operator=(const Error_reporter&) = default;
+  ~Error_reporter() = default;
+  virtual std::size_t current_position() const = 0;
+
+private:
+  std::string file_name_;
+  bool byte_offsets_;
+};
 
 /// Where a reader is inside a counted section, so that a truncated file or a
 /// wrong count is reported as "section X: expected N entries, read M".
@@ -29,7 +61,7 @@ struct Section_progress
 /// Splits a text stream into whitespace-separated tokens while keeping the
 /// line number of each one, which every error message needs. Lines are read
 /// one at a time, so memory stays bounded by the longest line.
-class Token_reader
+class Token_reader : public Error_reporter
 {
 public:
   Token_reader(std::istream& in, std::string file_name);
@@ -56,10 +88,11 @@ public:
 
   /// The line of the token last returned; at the end of input, the last line.
   std::size_t line() const { return line_number_; }
-  const std::string& file_name() const { return file_name_; }
 
-  [[noreturn]] void fail(const std::string& message) const;
-  [[noreturn]] void fail_at(std::size_t line, const std::string& message) const;
+
+  /// Bytes taken from the stream so far (whole lines, with their newline):
+  /// where a binary part of the file starts after a text header.
+  std::size_t bytes_consumed() const { return bytes_consumed_; }
 
   /// Counted section being read, for the messages of `expect_*()`; null when
   /// none. The object must outlive its use (see `Progress_scope`).
@@ -86,12 +119,14 @@ private:
                                     const std::string& problem = std::string()) const;
   std::string progress_suffix() const;
 
+  std::size_t current_position() const override { return line_number_; }
+
   std::istream& in_;
-  std::string file_name_;
   std::string current_line_;
   std::size_t position_ = 0;
   std::size_t token_start_ = 0;
   std::size_t line_number_ = 0;
+  std::size_t bytes_consumed_ = 0;
   std::size_t bytes_available_ = 0; // 0 when the stream cannot tell its size
   bool size_known_ = false;
   char comment_ = '\0';

@@ -1,6 +1,7 @@
 // Copyright (c) 2026 SpringMotion developers.
 #include <spring_motion/io/read_mesh.h>
 
+#include "Gmsh_common.h"
 #include "Raw_mesh.h"
 #include "Token_reader.h"
 
@@ -18,130 +19,30 @@ namespace spring_motion {
 
 namespace {
 
+using io_internal::Element_type;
+using io_internal::Node_numbering;
 using io_internal::Progress_scope;
+using io_internal::describe_type;
+using io_internal::find_element_type;
+using io_internal::line_type;
+using io_internal::tetrahedron_type;
+using io_internal::triangle_type;
 using io_internal::Raw_mesh;
 using io_internal::Section_progress;
 using io_internal::Token_reader;
 
 constexpr std::size_t max_count = std::numeric_limits<std::uint32_t>::max();
 
-// The fixed-size element types of the MSH format (Gmsh manual, "MSH file
-// format"): knowing their node counts lets a reader step over elements it
-// does not use. Types beyond this table are skipped to the end of the line.
-struct Element_type
-{
-  int dimension;
-  int nodes;
-  const char* name;
-};
-
-const Element_type* find_element_type(std::int64_t type)
-{
-  static constexpr Element_type types[] = {
-    {1, 2, "line"},                        // 1
-    {2, 3, "triangle"},                    // 2
-    {2, 4, "quadrangle"},                  // 3
-    {3, 4, "tetrahedron"},                 // 4
-    {3, 8, "hexahedron"},                  // 5
-    {3, 6, "prism"},                       // 6
-    {3, 5, "pyramid"},                     // 7
-    {1, 3, "3-node line"},                 // 8
-    {2, 6, "6-node triangle"},             // 9
-    {2, 9, "9-node quadrangle"},           // 10
-    {3, 10, "10-node tetrahedron"},        // 11
-    {3, 27, "27-node hexahedron"},         // 12
-    {3, 18, "18-node prism"},              // 13
-    {3, 14, "14-node pyramid"},            // 14
-    {0, 1, "point"},                       // 15
-    {2, 8, "8-node quadrangle"},           // 16
-    {3, 20, "20-node hexahedron"},         // 17
-    {3, 15, "15-node prism"},              // 18
-    {3, 13, "13-node pyramid"},            // 19
-    {2, 9, "9-node triangle"},             // 20
-    {2, 10, "10-node triangle"},           // 21
-    {2, 12, "12-node triangle"},           // 22
-    {2, 15, "15-node triangle"},           // 23
-    {2, 15, "15-node incomplete triangle"},// 24
-    {2, 21, "21-node triangle"},           // 25
-    {1, 4, "4-node line"},                 // 26
-    {1, 5, "5-node line"},                 // 27
-    {1, 6, "6-node line"},                 // 28
-    {3, 20, "20-node tetrahedron"},        // 29
-    {3, 35, "35-node tetrahedron"},        // 30
-    {3, 56, "56-node tetrahedron"},        // 31
-  };
-  if(type < 1 || type > static_cast<std::int64_t>(std::size(types)))
-    return nullptr;
-  return &types[type - 1];
-}
-
-constexpr std::int64_t line_type = 1, triangle_type = 2, tetrahedron_type = 4;
-
-std::string describe_type(std::int64_t type)
-{
-  const Element_type* t = find_element_type(type);
-  return std::string(t != nullptr ? t->name : "element") + " (Gmsh type " + std::to_string(type) + ")";
-}
-
-// Node tags are arbitrary positive numbers; most files number them 1..n in
-// order, which needs no map at all.
-class Node_numbering
-{
-public:
-  std::size_t size() const { return size_; }
-
-  // False if the tag was already used.
-  bool add(std::int64_t tag)
-  {
-    if(contiguous_) {
-      if(tag == static_cast<std::int64_t>(size_) + 1) {
-        ++size_;
-        return true;
-      }
-      if(tag >= 1 && tag <= static_cast<std::int64_t>(size_))
-        return false;
-      contiguous_ = false;
-      map_.reserve(size_ + 1);
-      for(std::size_t i = 0; i < size_; ++i)
-        map_.emplace(static_cast<std::int64_t>(i) + 1, static_cast<std::uint32_t>(i));
-    }
-    if(!map_.emplace(tag, static_cast<std::uint32_t>(size_)).second)
-      return false;
-    ++size_;
-    return true;
-  }
-
-  // The 0-based index of a tag, or false if the tag is not a node.
-  bool find(std::int64_t tag, std::uint32_t& index) const
-  {
-    if(contiguous_) {
-      if(tag < 1 || tag > static_cast<std::int64_t>(size_))
-        return false;
-      index = static_cast<std::uint32_t>(tag - 1);
-      return true;
-    }
-    const auto it = map_.find(tag);
-    if(it == map_.end())
-      return false;
-    index = it->second;
-    return true;
-  }
-
-private:
-  bool contiguous_ = true;
-  std::size_t size_ = 0;
-  std::unordered_map<std::int64_t, std::uint32_t> map_;
-};
-
 class Gmsh_reader
 {
 public:
-  Gmsh_reader(std::istream& in, const std::string& name) : reader_(in, name) {}
+  Gmsh_reader(std::istream& in, const std::string& name) : in_(in), reader_(in, name) {}
 
   Mesh_file read();
 
 private:
-  void read_format();
+  // True for a binary file, whose rest the binary reader reads.
+  bool read_format();
   void read_physical_names();
   void read_entities();
   void read_nodes_2();
@@ -156,6 +57,7 @@ private:
   // Reads the node tags of one element of a known type and stores it.
   void read_element(std::int64_t type, int label, std::size_t entry_index);
 
+  std::istream& in_;
   Token_reader reader_;
   Raw_mesh raw_;
   Node_numbering nodes_;
@@ -172,7 +74,7 @@ Mesh_file read_gmsh_impl(std::istream& in, const std::string& name)
   return reader.read();
 }
 
-void Gmsh_reader::read_format()
+bool Gmsh_reader::read_format()
 {
   std::string_view token;
   if(!reader_.next(token))
@@ -187,11 +89,22 @@ void Gmsh_reader::read_format()
   else
     reader_.fail("unsupported Gmsh format version " + Token_reader::quote(version)
                  + ": expected 2.2 or 4.1 (gmsh -format msh22 or msh41)");
-  const std::int64_t file_type = reader_.expect_integer("the file type (0 for ASCII)");
-  if(file_type != 0)
-    reader_.fail("binary Gmsh files are not supported: expected ASCII (file type 0, gmsh option -bin off)");
-  reader_.expect_integer("the data size");
-  expect_end("$MeshFormat", "the format line");
+  const std::int64_t file_type = reader_.expect_integer("the file type (0 for ASCII, 1 for binary)");
+  if(file_type != 0 && file_type != 1)
+    reader_.fail("expected the file type 0 (ASCII) or 1 (binary), found " + std::to_string(file_type));
+  const std::int64_t data_size = reader_.expect_integer("the data size");
+  if(file_type == 0) {
+    expect_end("$MeshFormat", "the format line");
+    return false;
+  }
+  // Binary data start right after this line, with doubles and (4.1) size_t
+  // of 8 bytes: what every gmsh writes on 64-bit machines.
+  if(data_size != 8)
+    reader_.fail("binary Gmsh file with data size " + std::to_string(data_size) + ": expected 8");
+  for(char c : reader_.rest_of_line())
+    if(c != ' ' && c != '\t' && c != '\r')
+      reader_.fail("expected the end of the format line before the binary data");
+  return true;
 }
 
 void Gmsh_reader::expect_end(const std::string& section, const std::string& after)
@@ -479,7 +392,8 @@ void Gmsh_reader::read_elements_4()
 
 Mesh_file Gmsh_reader::read()
 {
-  read_format();
+  if(read_format())
+    return io_internal::read_gmsh_binary(in_, reader_.file_name(), reader_.bytes_consumed(), version_);
   std::string_view token;
   while(reader_.next(token)) {
     if(token.front() != '$' || token.size() < 2)

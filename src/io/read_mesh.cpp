@@ -16,10 +16,11 @@ Mesh_file read_mesh(const std::string& path)
   const std::string extension = std::filesystem::path(path).extension().string();
   const bool is_medit = io_internal::equal_ignoring_case(extension, ".mesh");
   const bool is_gmsh = io_internal::equal_ignoring_case(extension, ".msh");
-  if(!is_medit && !is_gmsh)
+  const bool is_su2 = io_internal::equal_ignoring_case(extension, ".su2");
+  if(!is_medit && !is_gmsh && !is_su2)
     throw Input_error(path, 0, (extension.empty() ? std::string("no file extension")
                                                   : "unknown mesh file extension '" + extension + "'")
-                                 + ": expected .mesh (Medit ASCII) or .msh (Gmsh ASCII 2.2 or 4.1)");
+                                 + ": expected .mesh (Medit ASCII), .msh (Gmsh 2.2 or 4.1, ASCII or binary) or .su2 (SU2)");
 
   std::error_code error;
   // A directory opens as a stream on Linux and then reads as empty.
@@ -28,6 +29,8 @@ Mesh_file read_mesh(const std::string& path)
   std::ifstream in(path, std::ios::binary);
   if(!in)
     throw Input_error(path, 0, std::string("cannot open file: ") + std::strerror(errno));
+  if(is_su2)
+    return read_su2(in, path);
   return is_medit ? read_medit(in, path) : read_gmsh(in, path);
 }
 

@@ -1,8 +1,11 @@
 // Copyright (c) 2026 SpringMotion developers.
 #include <spring_motion/io/write_mesh.h>
 
+#include <spring_motion/Error.h>
+
 #include "Token_reader.h"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -16,6 +19,8 @@
 #include <functional>
 #include <ostream>
 #include <random>
+#include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -101,18 +106,18 @@ void check_mesh(const Indexed_mesh<D>& mesh)
     for(std::size_t i = 0; i < simplices.size(); ++i)
       for(std::uint32_t v : simplices[i])
         if(v >= n)
-          throw std::invalid_argument(std::string("write mesh: ") + what + " " + std::to_string(i)
+          throw Error(std::string("write mesh: ") + what + " " + std::to_string(i)
                                       + " has vertex index " + std::to_string(v) + ", expected less than "
                                       + std::to_string(n));
   };
   check_indices(mesh.elements, "element");
   check_indices(mesh.boundary_facets, "boundary facet");
   if(!mesh.element_labels.empty() && mesh.element_labels.size() != mesh.elements.size())
-    throw std::invalid_argument("write mesh: " + std::to_string(mesh.element_labels.size())
+    throw Error("write mesh: " + std::to_string(mesh.element_labels.size())
                                 + " element labels for " + std::to_string(mesh.elements.size())
                                 + " elements, expected one per element or none");
   if(!mesh.boundary_labels.empty() && mesh.boundary_labels.size() != mesh.boundary_facets.size())
-    throw std::invalid_argument("write mesh: " + std::to_string(mesh.boundary_labels.size())
+    throw Error("write mesh: " + std::to_string(mesh.boundary_labels.size())
                                 + " boundary labels for " + std::to_string(mesh.boundary_facets.size())
                                 + " boundary facets, expected one per facet or none");
 }
@@ -121,12 +126,12 @@ void check_data(const std::vector<Data_array>& arrays, std::size_t count, const 
 {
   for(const Data_array& a : arrays) {
     if(a.name.empty())
-      throw std::invalid_argument(std::string("write_vtu: a ") + kind + " data array has no name");
+      throw Error(std::string("write_vtu: a ") + kind + " data array has no name");
     if(a.components < 1 || a.components > 9)
-      throw std::invalid_argument("write_vtu: " + std::string(kind) + " data '" + a.name + "' has "
+      throw Error("write_vtu: " + std::string(kind) + " data '" + a.name + "' has "
                                   + std::to_string(a.components) + " components, expected 1 to 9");
     if(a.values.size() != count * static_cast<std::size_t>(a.components))
-      throw std::invalid_argument("write_vtu: " + std::string(kind) + " data '" + a.name + "' has "
+      throw Error("write_vtu: " + std::string(kind) + " data '" + a.name + "' has "
                                   + std::to_string(a.values.size()) + " values, expected "
                                   + std::to_string(count) + " x " + std::to_string(a.components));
   }
@@ -332,6 +337,321 @@ void write_vtu(const Indexed_mesh<D>& mesh, const std::string& path, const std::
   write_atomically(path, [&](std::ostream& out) { write_vtu(mesh, out, point_data, cell_data); });
 }
 
+namespace {
+
+std::string one_line(const std::string& text)
+{
+  std::string line = text;
+  for(char& c : line)
+    if(c == '\n' || c == '\r')
+      c = ' ';
+  return line;
+}
+
+// Runs of consecutive simplices with the same label: the blocks of a Gmsh
+// 4.1 file, which keep the simplices in their order.
+struct Run
+{
+  std::size_t first, end;
+  int label;
+};
+
+template <class Simplices>
+std::vector<Run> label_runs(const Simplices& simplices, const std::vector<int>& labels)
+{
+  std::vector<Run> runs;
+  for(std::size_t i = 0; i < simplices.size(); ++i) {
+    const int label = labels.empty() ? 0 : labels[i];
+    if(runs.empty() || runs.back().label != label)
+      runs.push_back({i, i, label});
+    runs.back().end = i + 1;
+  }
+  return runs;
+}
+
+std::vector<int> distinct_labels(const std::vector<Run>& runs)
+{
+  std::set<int> labels;
+  for(const Run& r : runs)
+    labels.insert(r.label);
+  return std::vector<int>(labels.begin(), labels.end());
+}
+
+// Whether a label name can stand as an SU2 marker tag as it is: one word,
+// which must not read back as a number (a number is a label without a name).
+bool usable_marker_tag(const std::string& name)
+{
+  if(name.empty())
+    return false;
+  for(char c : name)
+    if(c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '%' || c == '=')
+      return false;
+  std::int64_t ignored = 0;
+  return !io_internal::parse_integer(name, ignored);
+}
+
+} // namespace
+
+namespace {
+
+// The numbers of a Gmsh 4.1 file, as text (separated by blanks, one entry
+// per line) or in binary (int: 4 bytes, size_t and double: 8 bytes, in the
+// machine's byte order, as gmsh writes them).
+class Gmsh_emitter
+{
+public:
+  Gmsh_emitter(Text_writer& w, bool binary) : w_(w), binary_(binary) {}
+
+  void text(const std::string& t)
+  {
+    w_ << t;
+    fresh_line_ = true;
+  }
+  void int32(std::int64_t v) { number(v, 4); }
+  void size(std::size_t v) { number(static_cast<std::int64_t>(v), 8); }
+  void real(double v)
+  {
+    if(binary_) {
+      raw(&v, 8);
+      return;
+    }
+    separate();
+    w_ << v;
+  }
+  void end_line()
+  {
+    if(!binary_)
+      w_ << '\n';
+    fresh_line_ = true;
+  }
+  // Binary data end with a newline before the closing keyword.
+  void end_section(const std::string& keyword) { text(std::string(binary_ ? "\n" : "") + keyword + "\n"); }
+
+private:
+  void number(std::int64_t v, int bytes)
+  {
+    if(binary_) {
+      if(bytes == 4) {
+        const std::int32_t i = static_cast<std::int32_t>(v);
+        raw(&i, 4);
+      } else {
+        const std::uint64_t u = static_cast<std::uint64_t>(v);
+        raw(&u, 8);
+      }
+      return;
+    }
+    separate();
+    w_ << v;
+  }
+  void separate()
+  {
+    if(!fresh_line_)
+      w_ << ' ';
+    fresh_line_ = false;
+  }
+  void raw(const void* p, std::size_t n) { w_ << std::string(static_cast<const char*>(p), n); }
+
+  Text_writer& w_;
+  bool binary_;
+  bool fresh_line_ = true;
+};
+
+} // namespace
+
+template <int D>
+void write_gmsh(const Indexed_mesh<D>& mesh, std::ostream& out, Gmsh_encoding encoding)
+{
+  check_mesh(mesh);
+  const bool binary = encoding == Gmsh_encoding::binary;
+  const std::vector<Run> facet_runs = label_runs(mesh.boundary_facets, mesh.boundary_labels);
+  const std::vector<Run> element_runs = label_runs(mesh.elements, mesh.element_labels);
+  // One entity per label and dimension, tagged 1, 2, ... in label order,
+  // in the physical group of that label (none for label 0).
+  const std::vector<int> facet_labels = distinct_labels(facet_runs);
+  const std::vector<int> element_labels = distinct_labels(element_runs);
+  const auto entity_of = [](const std::vector<int>& labels, int label) {
+    return static_cast<std::int64_t>(std::lower_bound(labels.begin(), labels.end(), label) - labels.begin()) + 1;
+  };
+
+  Text_writer w(out);
+  Gmsh_emitter e(w, binary);
+  e.text(binary ? "$MeshFormat\n4.1 1 8\n" : "$MeshFormat\n4.1 0 8\n");
+  if(binary) {
+    e.int32(1); // tells the reader the byte order
+    e.text("\n");
+  }
+  e.text("$EndMeshFormat\n");
+  // Names of the labels in use, for each dimension that uses them (text in
+  // binary files too).
+  std::vector<std::pair<int, int>> named; // (dimension, label)
+  for(int label : facet_labels)
+    if(mesh.label_names.count(label) != 0)
+      named.push_back({D - 1, label});
+  for(int label : element_labels)
+    if(mesh.label_names.count(label) != 0)
+      named.push_back({D, label});
+  if(!named.empty()) {
+    w << "$PhysicalNames\n" << named.size() << '\n';
+    for(const auto& [dimension, label] : named)
+      w << dimension << ' ' << label << " \"" << one_line(mesh.label_names.at(label)) << "\"\n";
+    w << "$EndPhysicalNames\n";
+  }
+
+  // Bounding boxes of the entities, from the vertices of their simplices.
+  const auto write_entities = [&](const auto& simplices, const std::vector<int>& simplex_labels,
+                                  const std::vector<int>& labels) {
+    for(std::size_t k = 0; k < labels.size(); ++k) {
+      std::array<double, 3> low{0, 0, 0}, high{0, 0, 0};
+      bool first = true;
+      for(std::size_t i = 0; i < simplices.size(); ++i) {
+        if((simplex_labels.empty() ? 0 : simplex_labels[i]) != labels[k])
+          continue;
+        for(std::uint32_t v : simplices[i])
+          for(std::size_t c = 0; c < std::size_t(D); ++c) {
+            const double x = mesh.points[v][c];
+            low[c] = first ? x : std::min(low[c], x);
+            high[c] = first ? x : std::max(high[c], x);
+          }
+        first = false;
+      }
+      e.int32(static_cast<std::int64_t>(k + 1));
+      for(double x : low)
+        e.real(x);
+      for(double x : high)
+        e.real(x);
+      e.size(labels[k] != 0 ? 1 : 0);
+      if(labels[k] != 0)
+        e.int32(labels[k]);
+      e.size(0); // no bounding entities
+      e.end_line();
+    }
+  };
+  e.text("$Entities\n");
+  e.size(0);
+  e.size(D == 2 ? facet_labels.size() : 0);
+  e.size(D == 2 ? element_labels.size() : facet_labels.size());
+  e.size(D == 3 ? element_labels.size() : 0);
+  e.end_line();
+  write_entities(mesh.boundary_facets, mesh.boundary_labels, facet_labels);
+  write_entities(mesh.elements, mesh.element_labels, element_labels);
+  e.end_section("$EndEntities");
+
+  // All nodes in one block, on the first entity of the mesh's dimension
+  // (gmsh needs an entity; any will do).
+  const std::size_t n = mesh.points.size();
+  e.text("$Nodes\n");
+  e.size(n > 0 ? 1 : 0);
+  e.size(n);
+  e.size(n > 0 ? 1 : 0);
+  e.size(n);
+  e.end_line();
+  if(n > 0) {
+    e.int32(D);
+    e.int32(1);
+    e.int32(0);
+    e.size(n);
+    e.end_line();
+    for(std::size_t i = 0; i < n; ++i) {
+      e.size(i + 1);
+      e.end_line();
+    }
+    for(const auto& p : mesh.points) {
+      e.real(p[0]);
+      e.real(p[1]);
+      e.real(D == 3 ? p[D - 1] : 0.0);
+      e.end_line();
+    }
+  }
+  e.end_section("$EndNodes");
+
+  const std::size_t count = mesh.boundary_facets.size() + mesh.elements.size();
+  e.text("$Elements\n");
+  e.size(facet_runs.size() + element_runs.size());
+  e.size(count);
+  e.size(count > 0 ? 1 : 0);
+  e.size(count);
+  e.end_line();
+  std::size_t tag = 0;
+  const auto write_blocks = [&](const auto& simplices, const std::vector<Run>& runs, const std::vector<int>& labels,
+                                int dimension, int type) {
+    for(const Run& r : runs) {
+      e.int32(dimension);
+      e.int32(entity_of(labels, r.label));
+      e.int32(type);
+      e.size(r.end - r.first);
+      e.end_line();
+      for(std::size_t i = r.first; i < r.end; ++i) {
+        e.size(++tag);
+        for(std::uint32_t v : simplices[i])
+          e.size(std::size_t(v) + 1);
+        e.end_line();
+      }
+    }
+  };
+  // Gmsh types: 1 line, 2 triangle, 4 tetrahedron.
+  write_blocks(mesh.boundary_facets, facet_runs, facet_labels, D - 1, D == 2 ? 1 : 2);
+  write_blocks(mesh.elements, element_runs, element_labels, D, D == 2 ? 2 : 4);
+  e.end_section("$EndElements");
+}
+
+template <int D>
+void write_gmsh(const Indexed_mesh<D>& mesh, const std::string& path, Gmsh_encoding encoding)
+{
+  check_mesh(mesh);
+  write_atomically(path, [&mesh, encoding](std::ostream& out) { write_gmsh(mesh, out, encoding); });
+}
+
+template <int D>
+void write_su2(const Indexed_mesh<D>& mesh, std::ostream& out)
+{
+  check_mesh(mesh);
+  Text_writer w(out);
+  w << "% SU2 mesh written by SpringMotion\n";
+  for(const auto& [label, name] : mesh.label_names)
+    w << "% label " << label << ": " << one_line(name) << '\n';
+  w << "NDIME= " << D << "\nNELEM= " << mesh.elements.size() << '\n';
+  std::size_t index = 0;
+  for(const auto& e : mesh.elements) {
+    w << (D == 2 ? 5 : 10); // VTK_TRIANGLE, VTK_TETRA
+    for(std::uint32_t v : e)
+      w << ' ' << v;
+    w << ' ' << index++ << '\n';
+  }
+  w << "NPOIN= " << mesh.points.size() << '\n';
+  index = 0;
+  for(const auto& p : mesh.points) {
+    for(std::size_t k = 0; k < std::size_t(D); ++k)
+      w << p[k] << ' ';
+    w << index++ << '\n';
+  }
+  // One marker per boundary label, in label order.
+  std::map<int, std::vector<std::size_t>> markers;
+  for(std::size_t f = 0; f < mesh.boundary_facets.size(); ++f)
+    markers[mesh.boundary_labels.empty() ? 0 : mesh.boundary_labels[f]].push_back(f);
+  w << "NMARK= " << markers.size() << '\n';
+  for(const auto& [label, facets] : markers) {
+    const auto name = mesh.label_names.find(label);
+    if(name != mesh.label_names.end() && usable_marker_tag(name->second))
+      w << "MARKER_TAG= " << name->second << '\n';
+    else
+      w << "MARKER_TAG= " << label << '\n';
+    w << "MARKER_ELEMS= " << facets.size() << '\n';
+    for(std::size_t f : facets) {
+      w << (D == 2 ? 3 : 5); // VTK_LINE, VTK_TRIANGLE
+      for(std::uint32_t v : mesh.boundary_facets[f])
+        w << ' ' << v;
+      w << '\n';
+    }
+  }
+}
+
+template <int D>
+void write_su2(const Indexed_mesh<D>& mesh, const std::string& path)
+{
+  check_mesh(mesh);
+  write_atomically(path, [&mesh](std::ostream& out) { write_su2(mesh, out); });
+}
+
 template <int D>
 void write_mesh(const std::string& path, const Indexed_mesh<D>& mesh, const std::vector<Data_array>& point_data,
                 const std::vector<Data_array>& cell_data)
@@ -344,10 +664,18 @@ void write_mesh(const std::string& path, const Indexed_mesh<D>& mesh, const std:
     write_medit(mesh, path);
     return;
   }
+  if(has_extension(path, ".msh")) {
+    write_gmsh(mesh, path);
+    return;
+  }
+  if(has_extension(path, ".su2")) {
+    write_su2(mesh, path);
+    return;
+  }
   const std::string extension = fs::path(path).extension().string();
   throw Input_error(path, 0, (extension.empty() ? std::string("no file extension")
                                                 : "unknown output extension '" + extension + "'")
-                               + ": expected .vtu (VTK XML) or .mesh (Medit ASCII)");
+                               + ": expected .vtu (VTK XML), .mesh (Medit ASCII), .msh (Gmsh 4.1 ASCII) or .su2 (SU2)");
 }
 
 void write_mesh(const std::string& path, const Mesh_file& file, const std::vector<Data_array>& point_data,
@@ -358,7 +686,7 @@ void write_mesh(const std::string& path, const Mesh_file& file, const std::vecto
   else if(file.dimension == 3)
     write_mesh(path, file.mesh_3, point_data, cell_data);
   else
-    throw std::invalid_argument("write_mesh: Mesh_file::dimension is " + std::to_string(file.dimension)
+    throw Error("write_mesh: Mesh_file::dimension is " + std::to_string(file.dimension)
                                 + ", expected 2 or 3");
 }
 
@@ -410,6 +738,14 @@ template void write_medit<2>(const Indexed_mesh<2>&, std::ostream&);
 template void write_medit<3>(const Indexed_mesh<3>&, std::ostream&);
 template void write_medit<2>(const Indexed_mesh<2>&, const std::string&);
 template void write_medit<3>(const Indexed_mesh<3>&, const std::string&);
+template void write_gmsh<2>(const Indexed_mesh<2>&, std::ostream&, Gmsh_encoding);
+template void write_gmsh<3>(const Indexed_mesh<3>&, std::ostream&, Gmsh_encoding);
+template void write_gmsh<2>(const Indexed_mesh<2>&, const std::string&, Gmsh_encoding);
+template void write_gmsh<3>(const Indexed_mesh<3>&, const std::string&, Gmsh_encoding);
+template void write_su2<2>(const Indexed_mesh<2>&, std::ostream&);
+template void write_su2<3>(const Indexed_mesh<3>&, std::ostream&);
+template void write_su2<2>(const Indexed_mesh<2>&, const std::string&);
+template void write_su2<3>(const Indexed_mesh<3>&, const std::string&);
 template void write_vtu<2>(const Indexed_mesh<2>&, std::ostream&, const std::vector<Data_array>&,
                            const std::vector<Data_array>&);
 template void write_vtu<3>(const Indexed_mesh<3>&, std::ostream&, const std::vector<Data_array>&,

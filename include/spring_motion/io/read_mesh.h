@@ -26,14 +26,21 @@ struct Mesh_file
   /// node tag (one per vertex, in the order of `points`).
   std::vector<std::int64_t> vertex_ids;
   /// The 1-based line on which each element, and each boundary facet, is
-  /// written (one per entry of `elements` and of `boundary_facets`).
+  /// written (one per entry of `elements` and of `boundary_facets`); 0 for
+  /// every entry of a binary file, which has no lines.
   std::vector<std::size_t> element_lines;
   std::vector<std::size_t> boundary_facet_lines;
+  /// Binary files only (Gmsh `-bin`): the byte offset at which each element
+  /// and each boundary facet is written, as errors about binary files give it
+  /// ("file.msh: byte 1234: ..."). Empty for text files.
+  std::vector<std::size_t> element_offsets;
+  std::vector<std::size_t> boundary_facet_offsets;
 };
 
 /// Reads a mesh file, choosing the format by extension (case-insensitive):
 ///  - `.mesh`: Medit ASCII (see `read_medit()`),
-///  - `.msh`:  Gmsh ASCII, format 2.2 or 4.1 (see `read_gmsh()`).
+///  - `.msh`:  Gmsh ASCII or binary, format 2.2 or 4.1 (see `read_gmsh()`).
+///  - `.su2`:  SU2 native mesh, single zone (see `read_su2()`).
 ///
 /// How the dimension is decided, for both formats:
 ///  - tetrahedra present: a 3D mesh; triangles are its labelled boundary facets;
@@ -72,7 +79,14 @@ Mesh_file read_mesh(const std::string& path);
 /// \throws Input_error
 Mesh_file read_medit(std::istream& in, const std::string& name_for_errors);
 
-/// Reads a Gmsh ASCII mesh, format 2.2 or 4.1 (from `$MeshFormat`).
+/// Reads a Gmsh mesh, format 2.2 or 4.1 (from `$MeshFormat`), ASCII or
+/// binary (`gmsh -bin`, `Mesh.Binary = 1`; either byte order, told by the
+/// integer 1 after the format line; data size 8: 8-byte doubles and, in 4.1,
+/// 8-byte size_t). Errors in the binary part name the byte offset instead of
+/// a line ("file.msh: byte 1234: ..."), and `Mesh_file::element_offsets` /
+/// `boundary_facet_offsets` replace the lines. Binary element types beyond
+/// Gmsh's type 31 are an error (their size is unknown, nothing can skip them);
+/// unknown sections are skipped up to their `$End` keyword.
 ///
 /// Element types used: 1 (line), 2 (triangle), 4 (tetrahedron); 15 (point)
 /// is read and dropped; other types are skipped unless they are elements of
@@ -87,8 +101,31 @@ Mesh_file read_medit(std::istream& in, const std::string& name_for_errors);
 /// Unknown sections (`$NodeData`, `$Periodic`, `$Comments`, ...) are skipped.
 ///
 /// \param name_for_errors the file name used in error messages.
-/// \throws Input_error, also for binary files and formats other than 2.x, 4.1.
+/// \throws Input_error, also for formats other than 2.x, 4.1.
 Mesh_file read_gmsh(std::istream& in, const std::string& name_for_errors);
+
+/// Reads an SU2 native mesh (`.su2`, ASCII, one zone).
+///
+/// Keywords: `NDIME=` (2 or 3) first, then `NELEM=` (elements: the VTK type,
+/// the 0-based vertex indices, an optional index column), `NPOIN=` (points:
+/// NDIME coordinates and an optional index column; an optional second count
+/// on the `NPOIN=` line is ignored), `NMARK=` with, per marker, `MARKER_TAG=`
+/// and `MARKER_ELEMS=` (boundary elements). Elements must be triangles (type
+/// 5) when NDIME= 2 and tetrahedra (type 10) when NDIME= 3, boundary elements
+/// lines (3) or triangles (5): any other type is an error naming it. `%`
+/// starts a comment. `NZONE=`/`IZONE=` other than 1 are an error; other
+/// keywords (FFD boxes...) are skipped up to the next `KEYWORD=`.
+///
+/// Markers become boundary labels, named by their tag (`label_names`): a
+/// comment `% label N: NAME` (as `write_su2()` writes them) gives the tag
+/// NAME the number N; a tag that is an integer is that label, without a
+/// name; any other tag gets the smallest positive number not otherwise
+/// used, in file order. Elements have no labels in SU2 (all 0). Vertex ids
+/// (`Mesh_file::vertex_ids`) are SU2's 0-based indices.
+///
+/// \param name_for_errors the file name used in error messages.
+/// \throws Input_error naming the file and the line.
+Mesh_file read_su2(std::istream& in, const std::string& name_for_errors);
 
 } // namespace spring_motion
 

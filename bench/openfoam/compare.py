@@ -21,9 +21,12 @@ default model (grid_scaled) and solver on one thread, like serial OpenFOAM.
 Both final meshes are measured by mesh_quality.py (minimum triangle angle in
 2D, minimum dihedral angle in 3D, inverted elements against the initial mesh).
 Times are CPU seconds (user + system of the process, so other programs on a
-busy machine inflate them less than wall-clock time) per step, whole run
-(reading, setup, writing) divided by n; OpenFOAM's per-step CPU time without
-its start-up (differences of its ExecutionTime) is also printed.
+busy machine inflate them less than wall-clock time) per step computed
+(SpringMotion stops at the step it refuses, which counts): the whole run
+(reading, set-up, writing) divided by the steps, and the steps only, without
+the start-up: for OpenFOAM the differences of the ExecutionTime it prints
+after every step, for SpringMotion the whole run less a run of its first step
+alone, divided by the other steps.
 """
 import argparse
 import json
@@ -160,15 +163,38 @@ def parse_foam_log(log, steps):
     return first_negative, first_failed, exec_times
 
 
-def run_foam(name, poly, steps, amplitude, work, measure=True):
+def finished_foam_run(run_dir):
+    """CPU and wall seconds of a finished earlier run in run_dir, or None.
+
+    From its log: the last ExecutionTime (CPU seconds of the serial process)
+    and ClockTime; they miss only the moments before OpenFOAM starts its clock.
+    """
+    log = os.path.join(run_dir, "log.moveDynamicMesh")
+    if not (os.path.exists(log) and os.path.isdir(os.path.join(run_dir, "1"))):
+        return None
+    with open(log) as f:
+        text = f.read()
+    times = re.findall(r"ExecutionTime = ([0-9.eE+-]+) s\s+ClockTime = ([0-9.eE+-]+) s", text)
+    if not re.search(r"^End\s*$", text, re.M) or not times:
+        return None
+    return float(times[-1][0]), float(times[-1][1])
+
+
+def run_foam(name, poly, steps, amplitude, work, measure=True, reuse=False):
     run_dir = os.path.join(work, "foam_%s_%g_%d" % (name, amplitude, steps))
-    foam_case(name, poly, steps, amplitude, run_dir)
-    status, cpu, wall = run(["moveDynamicMesh"], os.path.join(run_dir, "log.moveDynamicMesh"), cwd=run_dir)
-    if status != 0:
-        sys.exit("compare.py: moveDynamicMesh failed (status %d), see %s/log.moveDynamicMesh" % (status, run_dir))
+    earlier = finished_foam_run(run_dir) if reuse else None
+    if earlier:
+        cpu, wall = earlier
+        print("  OpenFOAM: reusing the finished run in %s (--reuse-foam)" % run_dir, flush=True)
+    else:
+        foam_case(name, poly, steps, amplitude, run_dir)
+        status, cpu, wall = run(["moveDynamicMesh"], os.path.join(run_dir, "log.moveDynamicMesh"), cwd=run_dir)
+        if status != 0:
+            sys.exit("compare.py: moveDynamicMesh failed (status %d), see %s/log.moveDynamicMesh"
+                     % (status, run_dir))
     first_negative, first_failed, exec_times = parse_foam_log(os.path.join(run_dir, "log.moveDynamicMesh"), steps)
     result = {"tool": "OpenFOAM", "steps": steps, "amplitude": amplitude, "cpu": cpu, "wall": wall,
-              "completed_steps": len(exec_times), "first_negative": first_negative, "first_failed": first_failed,
+              "completed_steps": len(exec_times), "steps_done": len(exec_times), "first_negative": first_negative, "first_failed": first_failed,
               "final_angle": amplitude * math.sin(math.pi * len(exec_times) / (2 * steps)),
               "cpu_step_no_startup": ((exec_times[-1] - exec_times[0]) / (len(exec_times) - 1)
                                       if len(exec_times) > 1 else None)}
@@ -203,10 +229,22 @@ def run_spring_motion(name, gmsh_mesh, steps, amplitude, work, exe, measure=True
     with open(report) as f:
         rep = json.load(f)
     first_invalid = rep["first_invalid"]["step"] if rep["first_invalid"] else None
+    steps_done = first_invalid or steps  # the refused step was computed too
     result = {"tool": "SpringMotion", "steps": steps, "amplitude": amplitude, "cpu": cpu, "wall": wall,
-              "completed": bool(rep["completed"]), "first_negative": first_invalid,
+              "completed": bool(rep["completed"]), "first_negative": first_invalid, "steps_done": steps_done,
               "final_angle": rep["final_angle_deg"], "cpu_step_no_startup": None,
               "model": rep["model"]["name"]}
+    if measure and steps_done > 1:
+        # The same run's first step alone: reading, set-up and one step. What
+        # the full run took more is its other steps_done - 1 steps.
+        first = [exe, "deform", gmsh_mesh, "--moving", case["wing"],
+                 "--pitch", repr(angle_at(1, steps, amplitude)), "--center", center, "--steps", "1",
+                 "--threads", "1", "--quiet"]
+        status, cpu1, _ = run(first, os.path.join(out, "log.spring-motion-one-step"))
+        if status not in (0, 3):
+            sys.exit("compare.py: spring-motion failed (status %d), see %s/log.spring-motion-one-step"
+                     % (status, out))
+        result["cpu_step_no_startup"] = max(0.0, cpu - cpu1) / (steps_done - 1)
     if measure:
         elems, pts, _ = mesh_quality.read_medit(final)
         result["quality"] = mesh_quality.measure(elems, pts, pts)
@@ -237,9 +275,9 @@ def angle_at(step, steps, amplitude):
 def print_table(rows):
     print()
     print("| case | tool | n | target | first inverted cell: step (angle) | state measured | min %s (deg) | "
-          "inverted cells in it | CPU s/step (whole run) | CPU s/step (steps only) | wall s/step |"
+          "inverted cells in it | steps computed | CPU s/step (whole run) | CPU s/step (steps only) | wall s/step |"
           % "angle / dihedral")
-    print("|---|---|---:|---:|---|---|---:|---:|---:|---:|---:|")
+    print("|---|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|")
     for case, r in rows:
         n, amp = r["steps"], r["amplitude"]
         fn = r["first_negative"]
@@ -251,10 +289,10 @@ def print_table(rows):
         if r["tool"] == "SpringMotion" and not r["completed"]:
             state = "last valid, %.1f deg" % r["final_angle"]
         per_step = ("%.4f" % r["cpu_step_no_startup"]) if r["cpu_step_no_startup"] is not None else "-"
-        print("| %s | %s | %d | %g deg | %s | %s | %s | %s | %.4f | %s | %.4f |" % (
+        print("| %s | %s | %d | %g deg | %s | %s | %s | %s | %d | %.4f | %s | %.4f |" % (
             case, r["tool"] + (" (%s)" % r["model"] if "model" in r else ""), n, amp, first, state,
-            "%.2f" % q["min_angle_deg"] if q else "-", q["inverted"] if q else "-",
-            r["cpu"] / n, per_step, r["wall"] / n))
+            "%.2f" % q["min_angle_deg"] if q else "-", q["inverted"] if q else "-", r["steps_done"],
+            r["cpu"] / r["steps_done"], per_step, r["wall"] / r["steps_done"]))
     print()
 
 
@@ -267,6 +305,8 @@ def main():
     parser.add_argument("--bisect", action="store_true",
                         help="also bisect each tool's largest completing amplitude (slow)")
     parser.add_argument("--bisect-tolerance", type=float, default=0.5, help="degrees")
+    parser.add_argument("--reuse-foam", action="store_true",
+                        help="take the OpenFOAM runs of the main table from a finished earlier run in --work")
     parser.add_argument("--spring-motion", default=os.path.join(ROOT, "build", "src", "cli", "spring-motion"))
     parser.add_argument("--work", default=os.path.join(ROOT, "build", "openfoam_compare"))
     args = parser.parse_args()
@@ -286,11 +326,14 @@ def main():
         amp = CASES[name]["amplitude"]
         print("%s: %s, %d steps to %g deg ..." % (name, os.path.relpath(gmsh_mesh, ROOT), n, amp), flush=True)
         sm = run_spring_motion(name, gmsh_mesh, n, amp, args.work, args.spring_motion)
-        of = run_foam(name, poly, n, amp, args.work)
+        of = run_foam(name, poly, n, amp, args.work, reuse=args.reuse_foam)
         rows += [(name, sm), (name, of)]
         print("  initial mesh: min %s %.2f deg" % (of["initial_quality"]["kind"],
                                                    of["initial_quality"]["min_angle_deg"]), flush=True)
-        print("  CPU per step, whole run: OpenFOAM / SpringMotion = %.1f" % (of["cpu"] / sm["cpu"]), flush=True)
+        print("  CPU per step: OpenFOAM / SpringMotion = %.1f (whole runs), %.1f (steps only)"
+              % ((of["cpu"] / of["steps_done"]) / (sm["cpu"] / sm["steps_done"]),
+                 of["cpu_step_no_startup"] / sm["cpu_step_no_startup"]
+                 if of["cpu_step_no_startup"] and sm["cpu_step_no_startup"] else float("nan")), flush=True)
     print_table(rows)
 
     if args.bisect:

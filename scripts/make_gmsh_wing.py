@@ -7,7 +7,9 @@ data/naca0012_2d.geo), chord 1, span 2 (z from -1 to 1), flat tips. Far field:
 the sphere of radius 15 centred at (0.5, 0, 0). The fluid volume between them
 is meshed with tetrahedra of size h(p) = SIZE_AT_WING + SIZE_GROWTH d(p), d the
 distance to the wing, which with the defaults gives about the paper's 57924
-nodes and 308850 tetrahedra (the numbers are printed).
+nodes and 308850 tetrahedra: 58170 nodes, 349335 tetrahedra, 3081 wing nodes,
+smallest dihedral angle 6.4 degrees (--half: 31024 nodes, 176491 tetrahedra),
+in about 30 s of CPU time. The numbers are printed.
 
 Physical groups: surfaces "wing" (1) and "farfield" (2), volume "fluid" (10);
 with --half the wing spans z from 0 to 1 in the half sphere z >= 0 and the

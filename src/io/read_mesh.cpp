@@ -20,7 +20,7 @@ Mesh_file read_mesh(const std::string& path)
   if(!is_medit && !is_gmsh && !is_su2)
     throw Input_error(path, 0, (extension.empty() ? std::string("no file extension")
                                                   : "unknown mesh file extension '" + extension + "'")
-                                 + ": expected .mesh (Medit ASCII), .msh (Gmsh 2.2 or 4.1, ASCII or binary) or .su2 (SU2)");
+                                 + ": expected .mesh (Medit ASCII) or .msh (Gmsh 2.2 or 4.1, ASCII or binary) or .su2 (SU2 native)");
 
   std::error_code error;
   // A directory opens as a stream on Linux and then reads as empty.

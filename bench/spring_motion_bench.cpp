@@ -385,16 +385,17 @@ Case<3> box_case(std::size_t N, const Setup& setup)
 // ---- measurements ----------------------------------------------------------------------
 
 // Fills each captured system's solution (the step's increment at its free
-// vertices) and solve time once its step is done.
+// vertices) and solve time once its step is done. run() takes the visitor by
+// value: the captures it must fill are reached through a pointer.
 template <int D>
 struct Capture_visitor
 {
   const sm::Network_deformer<D>* deformer = nullptr;
-  std::vector<Captured_system<D>*> pending;
+  const std::vector<Captured_system<D>*>* pending = nullptr;
   void on_start(const sm::Deform_report&) {}
   void on_step(const sm::Step_report& s)
   {
-    for(Captured_system<D>* c : pending)
+    for(Captured_system<D>* c : *pending)
       if(c->step == s.step && c->solution.empty()) {
         for(sm::Index v : c->vertices) {
           std::array<double, D> d;
@@ -419,17 +420,19 @@ sm::Deform_report run_once(const Case<D>& c, const sm::Solver_options& solver, s
   std::optional<Captured_system<D>> latest; // if the run stops before a capture step
   std::vector<Captured_system<D>> got;
   got.reserve(c.capture_steps.size());
+  std::vector<Captured_system<D>*> pending;
   Capture_visitor<D> visitor;
   visitor.deformer = &deformer;
+  visitor.pending = &pending;
   if(capture)
     deformer.system_observer = [&](const sm::Step_system_view<D>& v) {
       ++call;
       if(std::find(c.capture_steps.begin(), c.capture_steps.end(), call) != c.capture_steps.end()) {
         got.push_back(Captured_system<D>::from(v, call, deformer.positions()));
-        visitor.pending.push_back(&got.back());
+        pending.push_back(&got.back());
       } else if(got.empty()) {
         latest = Captured_system<D>::from(v, call, deformer.positions());
-        visitor.pending.assign(1, &*latest);
+        pending.assign(1, &*latest);
       }
     };
   sm::Deform_options options;
@@ -438,6 +441,8 @@ sm::Deform_report run_once(const Case<D>& c, const sm::Solver_options& solver, s
   options.quality_every_step = false; // the exact validity check still runs every step
   const Partial_motion<sm::Pitch_motion<D>> motion{c.motion, double(options.number_of_steps) / double(c.of_steps)};
   const auto rep = deformer.run(motion, model, options, visitor);
+  for(const auto* p : pending)
+    SPRING_MOTION_CHECK(p->solution.size() == p->vertices.size(), "step " << p->step << ": no solution captured");
   if(capture) {
     if(got.empty() && latest)
       got.push_back(std::move(*latest));
@@ -564,10 +569,13 @@ Compare_stats compare_solvers(const Case<D>& c, const std::vector<Captured_syste
   return out;
 }
 
-// One SOR sweep in the solver's order: a one-step run whose solve is SOR
-// capped at `reps` sweeps (tolerance out of reach), its solve time over the
-// sweeps; the solve's own overhead (start, final residual) is about one
-// sweep, spread over the reps. The bytes a scalar sweep must move at least:
+// One SOR sweep in the solver's order, on the system of the motion's second
+// step (through Network_deformer::move: the first step solved by the
+// default solver, the second by SOR capped at `reps` and at 2 `reps` sweeps
+// with the tolerance out of reach); the difference of their solve times over
+// `reps` is the time of a sweep, the solve's fixed costs cancelling. (From a
+// zero start, as in a first step, the sweeps spread values so small that
+// they are subnormal, and slow.) The bytes a scalar sweep must move at least:
 // pattern and values once, right-hand side and inverse diagonal once,
 // solution read and written.
 template <int D>
@@ -575,15 +583,35 @@ Sweep_stats time_sweep(const Case<D>& c, const Captured_system<D>& cap, int thre
 {
   Sweep_stats s;
   const int reps = c.net.number_of_vertices() > 200000 ? 7 : 31;
-  sm::Solver_options o;
-  o.method = sm::Solver_method::sor;
-  o.relaxation_factor = 1.0;
-  o.tolerance = 1e-300;
-  o.max_iterations = std::size_t(reps);
-  o.threads = threads;
-  const auto rep = run_once<D>(c, o, nullptr, sm::Grid_scaled_stiffness{}, 1);
-  SPRING_MOTION_CHECK(!rep.steps.empty() && rep.steps[0].iterations == std::size_t(reps), "the sweep run did not sweep");
-  s.seconds = rep.steps[0].seconds_solve / double(reps);
+  auto solve_seconds = [&](int sweeps) {
+    sm::Network_deformer<D> deformer(c.net, c.roles);
+    auto displacement = [&](std::size_t step) {
+      std::vector<std::array<double, D>> d;
+      for(sm::Index v : deformer.moving_vertices()) {
+        const auto q = c.motion(c.net.points[v], double(step) / double(c.of_steps));
+        std::array<double, D> u;
+        for(int k = 0; k < D; ++k)
+          u[k] = q[k] - c.net.points[v][k];
+        d.push_back(u);
+      }
+      return d;
+    };
+    sm::Deform_options options;
+    options.quality_every_step = false;
+    options.solver.threads = threads;
+    deformer.move(displacement(1), sm::Grid_scaled_stiffness{}, options);
+    options.solver.method = sm::Solver_method::sor;
+    options.solver.relaxation_factor = 1.0;
+    options.solver.tolerance = 1e-300;
+    options.solver.max_iterations = std::size_t(sweeps);
+    const auto step = deformer.move(displacement(2), sm::Grid_scaled_stiffness{}, options);
+    SPRING_MOTION_CHECK(step.iterations == std::size_t(sweeps), "the sweep run did not sweep");
+    return step.seconds_solve;
+  };
+  std::vector<double> ts;
+  for(int r = 0; r < 3; ++r)
+    ts.push_back((solve_seconds(2 * reps) - solve_seconds(reps)) / double(reps));
+  s.seconds = median(ts);
   const double nf = double(cap.vertices.size()), nnz = double(cap.columns.size());
   s.bytes = nnz * (sizeof(sm::Index) + sizeof(double)) +
             nf * (sizeof(sm::Index) + sizeof(double) + D * sizeof(double) + 2.0 * D * sizeof(double));

@@ -174,6 +174,10 @@ void assemble_block_system(const Spring_network<D>& net, const std::vector<typen
     const std::size_t t = elements[s];
     Ke.fill(0.0);
     model.add_element_matrix(element_points<D>(net.elements, x, t), Ke.data());
+    // all of it, rows of constrained vertices too: a model that breaks there
+    // breaks elsewhere on another step
+    for(double v : Ke)
+      SPRING_MOTION_ELEMENT_CHECK(std::isfinite(v), t, "element stiffness of element " << t << " is not finite");
     for(int a = 0; a <= D; ++a)
       for(int b = 0; b <= D; ++b) {
         const Index to = dest[(s * (D + 1) + std::size_t(a)) * (D + 1) + std::size_t(b)];
@@ -182,9 +186,7 @@ void assemble_block_system(const Spring_network<D>& net, const std::vector<typen
         double* out = blocks + std::size_t(to) * DD;
         for(int r = 0; r < D; ++r)
           for(int c = 0; c < D; ++c) {
-            const double v = Ke[std::size_t((a * D + r) * ND + (b * D + c))];
-            SPRING_MOTION_ELEMENT_CHECK(std::isfinite(v), t, "element stiffness of element " << t << " is not finite");
-            out[r * D + c] += v;
+            out[r * D + c] += Ke[std::size_t((a * D + r) * ND + (b * D + c))];
           }
       }
   }

@@ -73,7 +73,7 @@ public:
   const std::vector<Index>& bnd_offsets() const { return bnd_offsets_; }
   const std::vector<Index>& bnd_vertices() const { return bnd_vertex_; }
   const std::vector<Index>& bnd_edges() const { return bnd_edge_; }
-  /// block systems: the elements with a free vertex, and for each of them
+  /// block systems: the elements (all), and for each of them
   /// (D+1)^2 destinations of its element matrix's blocks (a, b) in
   /// block_values() (in blocks of D*D), `none` for rows of constrained vertices
   const std::vector<Index>& assembled_elements() const { return elements_; }
@@ -379,18 +379,15 @@ private:
       colour_offsets_[c + 1] += colour_offsets_[c];
   }
 
-  // For every element with a free vertex, where each of its (D+1)^2 blocks
+  // For every element, where each of its (D+1)^2 blocks
   // goes: a diagonal block, an off-diagonal one, a coupling to a constrained
   // vertex, or nowhere (a constrained vertex's row).
   void element_destinations(const Spring_network<D>& net, const std::vector<Index>& row_of)
   {
     for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
+      // every element, those with no free vertex too: their matrices go
+      // nowhere, but computing them checks the model everywhere, every step
       const auto& el = net.elements[t];
-      bool any = false;
-      for(Index v : el)
-        any = any || row_of[v] != none;
-      if(!any)
-        continue;
       elements_.push_back(Index(t));
       for(int a = 0; a <= D; ++a)
         for(int b = 0; b <= D; ++b) {

@@ -33,6 +33,10 @@
 #include <variant>
 #include <vector>
 
+#ifndef SPRING_MOTION_VERSION
+#define SPRING_MOTION_VERSION "unknown"
+#endif
+
 namespace py = pybind11;
 
 namespace spring_motion {
@@ -325,6 +329,31 @@ std::vector<Vertex_role> command_line_roles(const Spring_network<D>& net, const 
   return roles;
 }
 
+/// The checks of Network_deformer's constructor, with the command line's
+/// messages: the file's vertex numbers and the point, not network indices.
+template <int D>
+void check_roles(const Mesh& m, const Spring_network<D>& net, const std::vector<Vertex_role>& roles)
+{
+  std::size_t moving = 0; // among the vertices some element uses
+  for(const auto& e : net.elements)
+    for(Index v : e)
+      moving += roles[v] == Vertex_role::moving;
+  if(moving == 0)
+    throw Input_error(m.path, 0, "no vertex moves (the moving set is empty): expected a moving boundary part "
+                                 "with at least one vertex");
+  const std::vector<Index> undetermined = undetermined_vertices(net, roles);
+  if(!undetermined.empty()) {
+    const Index v = undetermined.front();
+    std::ostringstream msg;
+    msg << undetermined.size() << " free vertices (for instance vertex " << m.file->vertex_ids[v] << " at (";
+    for(int c = 0; c < D; ++c)
+      msg << (c ? ", " : "") << net.points[v][std::size_t(c)];
+    msg << ")) are connected to no moving or fixed vertex, so their motion is undetermined (a singular system): "
+           "expected every part of the mesh to touch a moving or fixed boundary (see fixed=)";
+    throw Input_error(m.path, 0, msg.str());
+  }
+}
+
 // ---- motions -------------------------------------------------------------------
 
 /// `displacement=`: each moving vertex goes to p0 + t * d, looked up by its
@@ -421,6 +450,7 @@ std::pair<std::vector<std::array<double, D>>, std::string> run_deform(const Mesh
                                                "displacement: expected one displacement per point");
           }
       }
+      check_roles(m, net, roles);
       Network_deformer<D> deformer(std::move(net), std::move(roles));
       const Deform_report r = with_model(a.model, [&](const auto& model) {
         if(pitch)
@@ -713,4 +743,5 @@ extension: .vtu (with point_data / cell_data: {name: (count,) or (count, k)
 array}) or .mesh (Medit). The file is written whole or not at all.)");
 
   m.attr("model_names") = model_names();
+  m.attr("__version__") = SPRING_MOTION_VERSION;
 }

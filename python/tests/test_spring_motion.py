@@ -367,3 +367,22 @@ def test_flapping_example_writes_a_time_series(source_dir, tmp_path):
     assert abs(tips[0]) < 1e-12 and abs(tips[2]) < 1e-12 and abs(tips[4]) < 1e-12
     chord = np.ptp(mesh.points[surface, 0])
     assert tips[1] == pytest.approx(0.08 * chord, abs=1e-12) and abs(tips[1] + tips[3]) < 1e-12
+
+
+def test_an_undetermined_region_is_named_as_the_file_numbers_it(data):
+    # two grids side by side; labels 1..5 (Medit references) on their sides
+    path = str(data("tests/data/cli/two_parts.mesh"))
+    mesh = sm.read_mesh(path)
+    with pytest.raises(sm.Input_error) as e:
+        sm.deform(mesh, moving=1, fixed=1, translate=(0.1, 0), steps=2)
+    v = int(str(e.value).split("for instance vertex ")[1].split()[0])
+    assert str(e.value).startswith(path + ": 9 free vertices")
+    assert v in mesh.vertex_ids  # the file's number, and the point printed is that vertex's
+    x, y = mesh.points[list(mesh.vertex_ids).index(v)]
+    assert "vertex %d at (%g, %g))" % (v, x, y) in str(e.value)
+
+
+def test_version_is_the_projects(source_dir):
+    import re
+    text = (source_dir / "CMakeLists.txt").read_text()
+    assert sm.__version__ == re.search(r"project\(SpringMotion VERSION ([0-9.]+)", text).group(1)

@@ -9,8 +9,14 @@ $SUDO apt-get update -q
 # nlohmann-json3-dev: writes the JSON report (src/report_json.cpp) and reads it
 # back in the tests; libcli11-dev: parses the spring-motion command line.
 # Both are header-only.
+# pybind11-dev, python3-dev: the Python module (python/); python3-pytest runs
+# its tests; python3-setuptools, -wheel, -pip, -venv: `pip install
+# --no-build-isolation .` with Debian's own build tools (nothing is fetched).
+# python3-gmsh: the Gmsh wing script (scripts/make_gmsh_wing.py) and the
+# binary test meshes' generator.
 $SUDO apt-get install -y -q --no-install-recommends \
   g++ make cmake \
   libcgal-dev libboost-graph-dev libeigen3-dev catch2 \
   nlohmann-json3-dev libcli11-dev \
-  python3 python3-numpy python3-matplotlib python3-meshio
+  pybind11-dev python3-dev python3-pytest python3-setuptools python3-wheel python3-pip python3-venv \
+  python3 python3-numpy python3-matplotlib python3-meshio python3-gmsh

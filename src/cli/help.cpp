@@ -1,12 +1,47 @@
 // Copyright (c) 2026 SpringMotion developers.
 #include "commands.h"
 
+#include <spring_motion/stiffness/model_by_name.h>
+
 #include <regex>
 
 namespace spring_motion {
 namespace cli {
+namespace {
 
-const char* main_help()
+// The names of the model table, comma-separated, wrapped after `width`
+// characters, each line after the first starting with `indent`.
+std::string model_name_list(const std::string& indent, std::size_t width)
+{
+  std::string text, line;
+  const auto& names = model_names();
+  for(std::size_t i = 0; i < names.size(); ++i) {
+    const std::string word = names[i] + (i + 1 < names.size() ? "," : "");
+    if(!line.empty() && line.size() + 1 + word.size() > width) {
+      text += line + "\n" + indent;
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  return text + line;
+}
+
+// One line per model of the table: name, where it works, summary.
+std::string model_table_lines(const std::string& indent)
+{
+  std::string text;
+  for(const auto& e : model_table()) {
+    text += indent + e.name;
+    if(!(e.in_2d && e.in_3d))
+      text += e.in_2d ? " (2D only)" : " (3D only)";
+    text += "\n" + indent + "    " + e.summary + "\n";
+  }
+  return text;
+}
+
+} // namespace
+
+std::string main_help()
 {
   return R"(usage: spring-motion COMMAND [OPTIONS]
 
@@ -23,6 +58,8 @@ commands:
   spring-motion --version         the version
 
 Meshes: Medit ASCII (.mesh, Dimension 2 or 3) and Gmsh ASCII 2.2 / 4.1 (.msh).
+Stiffness models (deform --model):
+  )" + model_name_list("  ", 76) + R"(
 Exit status: 0 success, 1 bad input (nothing written), 2 bad command line,
 3 motion stopped at an inverted step / invalid mesh, 4 internal error,
 130 interrupted (outputs removed).
@@ -30,7 +67,7 @@ See docs/cli.md.
 )";
 }
 
-const char* deform_help()
+std::string deform_help()
 {
   return R"(usage: spring-motion deform MESH --moving REF[,REF...] [--fixed REF[,REF...]] MOTION
                             [--steps N] [--model NAME] [--solver cg|cg-sgs|sor|paper] [--omega W]
@@ -72,9 +109,8 @@ MOTION (exactly one):
 
 options:
   --steps N            increments (default 100)
-  --model NAME         stiffness model: lineal, lineal_p2, blom, zeng_ethier,
-                       grid_scaled (default), torsional (2D only)
-  --solver NAME        cg: conjugate gradients preconditioned by a multigrid
+  --model NAME         stiffness model (default grid_scaled), one of:
+)" + model_table_lines("                         ") + R"(  --solver NAME        cg: conjugate gradients preconditioned by a multigrid
                        cycle, stopped when the estimated error <= tolerance
                        (default); cg-sgs: the same with a symmetric
                        Gauss-Seidel sweep as the preconditioner;
@@ -114,7 +150,7 @@ example:
 )";
 }
 
-const char* check_help()
+std::string check_help()
 {
   return R"(usage: spring-motion check MESH
 
@@ -132,7 +168,7 @@ elements (listed on stderr with their lines).
 )";
 }
 
-const char* convert_help()
+std::string convert_help()
 {
   return R"(usage: spring-motion convert MESH OUT
 

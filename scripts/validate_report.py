@@ -70,7 +70,9 @@ def validate(path):
         fail(path, "solver.preconditioner is 'none' exactly when solver.name is 'sor'")
     for k in ("relaxation_factor", "preconditioner_relaxation_factor", "tolerance"):
         check_number(path, f"solver.{k}", so.get(k))
-    for k in ("max_iterations", "threads"):
+    for k in ("multigrid_strength", "multigrid_correction"):
+        check_number(path, f"solver.{k}", so.get(k))
+    for k in ("max_iterations", "threads", "block_rows", "multigrid_coarsest_rows", "multigrid_max_direct_rows"):
         if not isinstance(so.get(k), int) or isinstance(so.get(k), bool) or so[k] < 0:
             fail(path, f"solver.{k} should be a non-negative integer")
     for k in ("warm_start", "extrapolate"):
@@ -86,6 +88,9 @@ def validate(path):
                 fail(path, f"steps[{i}].{k} missing")
         if s["step"] != i + 1:
             fail(path, f"steps[{i}].step is {s['step']}, expected {i + 1}")
+        for k in ("substeps", "rejected_attempts"):
+            if not isinstance(s.get(k), int) or isinstance(s.get(k), bool) or s[k] < 0:
+                fail(path, f"steps[{i}].{k} should be a non-negative integer")
         for k in ("stiffness", "solve", "check"):
             check_number(path, f"steps[{i}].seconds.{k}", s["seconds"].get(k))
     if not isinstance(r["completed"], bool):

@@ -71,6 +71,11 @@ Json solver(const Solver_options& o)
   s["extrapolate"] = o.extrapolate;
   s["ordering"] = ordering_name(o.ordering);
   s["threads"] = o.threads;
+  s["block_rows"] = o.block_rows;
+  s["multigrid_strength"] = number(o.multigrid_strength);
+  s["multigrid_correction"] = number(o.multigrid_correction);
+  s["multigrid_coarsest_rows"] = o.multigrid_coarsest_rows;
+  s["multigrid_max_direct_rows"] = o.multigrid_max_direct_rows;
   return s;
 }
 
@@ -87,6 +92,7 @@ Json step(const Step_report& s)
   j["error_estimate"] = number(s.error_estimate);
   j["substeps"] = s.substeps;
   j["inverted"] = s.inverted;
+  j["rejected_attempts"] = s.rejected_attempts;
   j["min_size_ratio"] = number(s.min_size_ratio);
   j["max_size_ratio"] = number(s.max_size_ratio);
   j["max_skewness_moving"] = number(s.max_skewness_moving);

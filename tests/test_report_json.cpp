@@ -81,6 +81,11 @@ void check_report(const Json& j, const Deform_report& r)
                           : o.ordering == Vertex_ordering::multicolour ? "multicolour"
                                                                        : "block_multicolour"));
   CHECK(s["threads"].get<int>() == o.threads);
+  CHECK(s["block_rows"].get<std::size_t>() == o.block_rows);
+  check_number(s["multigrid_strength"], o.multigrid_strength);
+  check_number(s["multigrid_correction"], o.multigrid_correction);
+  CHECK(s["multigrid_coarsest_rows"].get<std::size_t>() == o.multigrid_coarsest_rows);
+  CHECK(s["multigrid_max_direct_rows"].get<std::size_t>() == o.multigrid_max_direct_rows);
   REQUIRE(j["steps"].size() == r.steps.size());
   for(std::size_t i = 0; i < r.steps.size(); ++i) {
     const Json& js = j["steps"][i];
@@ -95,6 +100,7 @@ void check_report(const Json& j, const Deform_report& r)
     check_number(js["error_estimate"], st.error_estimate);
     CHECK(js["substeps"].get<std::size_t>() == st.substeps);
     CHECK(js["inverted"].get<std::size_t>() == st.inverted);
+    CHECK(js["rejected_attempts"].get<std::size_t>() == st.rejected_attempts);
     check_number(js["min_size_ratio"], st.min_size_ratio);
     check_number(js["max_size_ratio"], st.max_size_ratio);
     check_number(js["max_skewness_moving"], st.max_skewness_moving);
@@ -137,6 +143,12 @@ TEST_CASE("write_report_json: a completed pitch run reads back field by field", 
   options.solver.preconditioner = Preconditioner::symmetric_gauss_seidel;
   options.solver.ordering = Vertex_ordering::natural;
   options.solver.threads = 1;
+  // settings other than the defaults, so the check below cannot pass on defaults
+  options.solver.block_rows = 300;
+  options.solver.multigrid_strength = 0.03;
+  options.solver.multigrid_correction = 1.1;
+  options.solver.multigrid_coarsest_rows = 32;
+  options.solver.multigrid_max_direct_rows = 128;
   const auto report = deform(cdt, hole_moves, Pitch_motion<2>(10.0, {0.0, 0.0}), Zeng_Ethier_semi_torsional_stiffness{},
                              options);
   REQUIRE(report.completed);
@@ -147,6 +159,11 @@ TEST_CASE("write_report_json: a completed pitch run reads back field by field", 
   CHECK(j["solver"]["preconditioner"] == "symmetric_gauss_seidel");
   CHECK(j["first_invalid"].is_null());
   CHECK(j["motion"]["kind"] == "pitch");
+  CHECK(j["solver"]["block_rows"] == 300);
+  CHECK(j["solver"]["multigrid_strength"] == 0.03);
+  CHECK(j["solver"]["multigrid_correction"] == 1.1);
+  CHECK(j["solver"]["multigrid_coarsest_rows"] == 32);
+  CHECK(j["solver"]["multigrid_max_direct_rows"] == 128);
 }
 
 TEST_CASE("write_report_json: a stopped run reports its first invalid step, non-finite values as null",
@@ -160,6 +177,7 @@ TEST_CASE("write_report_json: a stopped run reports its first invalid step, non-
   Deform_options options;
   options.number_of_steps = 2;
   options.solver = Solver_options::paper();
+  options.max_substep_halvings = 2;
   // a translation far beyond the gap to the outer boundary must invert elements
   const auto report = deform(cdt, hole_moves, Translation_motion<2>{{2.0, 0.0}}, Lineal_stiffness{}, options);
   REQUIRE_FALSE(report.completed);
@@ -170,4 +188,8 @@ TEST_CASE("write_report_json: a stopped run reports its first invalid step, non-
   CHECK(j["solver"]["preconditioner"] == "none");
   CHECK(j["final_angle_deg"].is_null()); // a translation has no angle
   CHECK_FALSE(j["first_invalid"]["elements"].empty());
+  // the failed step was tried whole, as 2 and as 4 substeps: two attempts
+  // rejected before the last one, which failed too
+  CHECK(j["steps"].back()["rejected_attempts"] == 2);
+  CHECK(j["steps"].back()["substeps"] == 4);
 }

@@ -26,17 +26,33 @@ const char* element_plural(int dimension) { return dimension == 2 ? "triangles" 
 const char* facet_plural(int dimension) { return dimension == 2 ? "edges" : "triangles"; }
 
 
-// "lines 14, 15, 20 and 3 more"
-std::string line_list(const std::vector<std::size_t>& elements, const std::vector<std::size_t>& lines)
+// "lines 14, 15, 20 and 3 more"; for a binary file, which has no lines,
+// "bytes 1234, ..." (the offsets at which the elements are written)
+std::string line_list(const std::vector<std::size_t>& elements, const Mesh_file& file)
 {
+  const bool binary = !file.element_offsets.empty();
+  const auto& where = binary ? file.element_offsets : file.element_lines;
   std::ostringstream out;
-  out << (elements.size() == 1 ? "line " : "lines ");
+  out << (binary ? "byte" : "line") << (elements.size() == 1 ? " " : "s ");
   const std::size_t shown = std::min<std::size_t>(elements.size(), 5);
   for(std::size_t i = 0; i < shown; ++i)
-    out << (i ? ", " : "") << lines[elements[i]];
+    out << (i ? ", " : "") << where[elements[i]];
   if(elements.size() > shown)
     out << " and " << elements.size() - shown << " more";
   return out.str();
+}
+
+// An error about entry i of the file's elements (or boundary facets): a text
+// file names its line, a binary file the byte offset of the entry, as the
+// readers' own errors do ("file.msh: byte 1234: ...").
+Input_error entry_error(const std::string& path, const Mesh_file& file, bool facet, std::size_t i,
+                        const std::string& message)
+{
+  const auto& offsets = facet ? file.boundary_facet_offsets : file.element_offsets;
+  if(i < offsets.size())
+    return Input_error(path, 0, "byte " + std::to_string(offsets[i]) + ": " + message);
+  const auto& lines = facet ? file.boundary_facet_lines : file.element_lines;
+  return Input_error(path, i < lines.size() ? lines[i] : 0, message);
 }
 
 template <int D>
@@ -112,12 +128,12 @@ Mesh_setup<D> make_mesh_setup(const std::string& path, const Mesh_file& file, bo
       msg << "this " << facet_noun(D) << " (vertices " << vertex_list<D>(file, mesh.boundary_facets[f])
           << ", label " << label << ") is not a side of any " << element_noun(D) << ": expected "
           << facet_plural(D) << " on the boundary of the mesh";
-      throw Input_error(path, file.boundary_facet_lines[f], msg.str());
+      throw entry_error(path, file, true, f, msg.str());
     }
     Label_use& use = setup.labels[label];
     if(sides[f] > 1) {
       if(use.interior_facets++ == 0)
-        use.first_interior_line = file.boundary_facet_lines[f];
+        use.first_interior_facet = f;
     } else {
       ++use.boundary_facets;
       view.on_boundary[f] = 1;
@@ -145,13 +161,13 @@ template <int D>
 std::string describe_problems(const Mesh_setup<D>& setup, std::size_t* first_line)
 {
   const auto& p = setup.problems;
-  const auto& lines = setup.file->element_lines;
+  const auto& lines = setup.file->element_lines; // all 0 for a binary file
   std::ostringstream out;
   const char* separator = "";
   const auto part = [&](const std::vector<std::size_t>& elements, const std::string& what) {
     if(elements.empty())
       return;
-    out << separator << elements.size() << " " << what << " at " << line_list(elements, lines);
+    out << separator << elements.size() << " " << what << " at " << line_list(elements, *setup.file);
     if(first_line && !*separator)
       *first_line = lines[elements.front()];
     separator = "; ";
@@ -194,7 +210,7 @@ Input_error file_error(const Mesh_setup<D>& setup, const Error& error)
     }
   if(const auto* e = dynamic_cast<const Element_error*>(&error))
     if(e->element() < setup.file->element_lines.size())
-      return Input_error(setup.path, setup.file->element_lines[e->element()],
+      return entry_error(setup.path, *setup.file, false, e->element(),
                          std::string("this ") + element_noun(D) + ": " + message);
   return Input_error(setup.path, 0, message);
 }
@@ -252,7 +268,7 @@ std::vector<int> resolve_labels(const Mesh_setup<D>& setup, const std::string& o
       throw Input_error(setup.path, 0, "--" + option + ": unknown label '" + item + "'" + valid);
     if(it->second.boundary_facets == 0) {
       if(it->second.interior_facets > 0)
-        throw Input_error(setup.path, it->second.first_interior_line,
+        throw entry_error(setup.path, *setup.file, true, it->second.first_interior_facet,
                           "--" + option + ": label '" + item + "' marks " + facet_plural(D) +
                             " inside the mesh, not on its boundary" + valid);
       throw Input_error(setup.path, 0,

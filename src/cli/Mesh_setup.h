@@ -28,7 +28,7 @@ struct Label_use
 {
   std::size_t boundary_facets = 0; ///< facets of the label on the mesh's boundary
   std::size_t interior_facets = 0; ///< facets of the label inside the mesh (ignored)
-  std::size_t first_interior_line = 0;
+  std::size_t first_interior_facet = 0; ///< index in the file's boundary facets
   std::size_t elements = 0;        ///< elements with this label
 };
 

@@ -44,10 +44,10 @@ int check_command(const std::vector<std::string>& arguments, std::ostream& out, 
 int convert_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err);
 
 /// The --help texts.
-const char* main_help();
-const char* deform_help();
-const char* check_help();
-const char* convert_help();
+std::string main_help();
+std::string deform_help();
+std::string check_help();
+std::string convert_help();
 
 /// The message of a library `Error` without its " [source.h:123]" suffix,
 /// which means nothing to a user of the command.

@@ -36,7 +36,7 @@ int convert_command(const std::vector<std::string>& arguments, std::ostream& out
   const std::string& in = a.operands()[0];
   const Output_file output = classify_output(a.operands()[1]);
   if(output.kind == Output_file::Kind::pvd)
-    throw Input_error(output.path, 0, "a .pvd is a time series: expected .vtu or .mesh for one mesh");
+    throw Input_error(output.path, 0, "a .pvd is a time series: expected .vtu, .mesh, .msh or .su2 for one mesh");
   check_outputs({in}, {output}, "");
   const Mesh_file file = read_mesh(in);
   if(file.dimension == 2)

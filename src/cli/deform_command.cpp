@@ -31,6 +31,18 @@ namespace cli {
 
 namespace {
 
+// A --model name not in the model table, or one that does not work in
+// `dimension` (0: before the mesh is read), is a usage error; the table's
+// message lists the valid names.
+void check_model(const std::string& name, int dimension)
+{
+  try {
+    check_model_name(name, dimension);
+  } catch(const Error& e) {
+    throw Usage_error("--model: " + without_source_location(e.what()));
+  }
+}
+
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
@@ -103,13 +115,7 @@ Deform_settings parse_deform(const Arguments& a)
   s.options.number_of_steps = std::size_t(a.integer("steps", 100, 1, 100000000));
   if(const auto model = a.value("model")) {
     s.model = *model;
-    const auto& names = model_names();
-    if(std::find(names.begin(), names.end(), s.model) == names.end()) {
-      std::string valid;
-      for(const auto& n : names)
-        valid += (valid.empty() ? "" : ", ") + n;
-      throw Usage_error("--model: unknown stiffness model '" + s.model + "': expected one of " + valid);
-    }
+    check_model(s.model, 0); // the dimension is checked once the mesh is read
   }
   const std::string solver = a.value("solver").value_or(a.has("omega") ? "sor" : "cg");
   if(solver == "paper")
@@ -293,9 +299,7 @@ template <int D>
 int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& out, std::ostream& err,
                bool err_is_terminal)
 {
-  if(s.model == "torsional" && D == 3)
-    throw Usage_error("--model torsional: the torsional model is implemented in 2D only; for a 3D mesh expected "
-                      "one of lineal, lineal_p2, blom, zeng_ethier, grid_scaled");
+  check_model(s.model, D);
   Mesh_setup<D> setup = make_mesh_setup<D>(s.mesh_path, file, true);
   const std::vector<int> moving = s.moving ? resolve_labels(setup, "moving", *s.moving) : std::vector<int>{};
   const std::vector<int> fixed = s.fixed ? resolve_labels(setup, "fixed", *s.fixed) : std::vector<int>{};

@@ -1,12 +1,47 @@
 // Copyright (c) 2026 SpringMotion developers.
 #include "commands.h"
 
+#include <spring_motion/stiffness/model_by_name.h>
+
 #include <regex>
 
 namespace spring_motion {
 namespace cli {
+namespace {
 
-const char* main_help()
+// The names of the model table, comma-separated, wrapped after `width`
+// characters, each line after the first starting with `indent`.
+std::string model_name_list(const std::string& indent, std::size_t width)
+{
+  std::string text, line;
+  const auto& names = model_names();
+  for(std::size_t i = 0; i < names.size(); ++i) {
+    const std::string word = names[i] + (i + 1 < names.size() ? "," : "");
+    if(!line.empty() && line.size() + 1 + word.size() > width) {
+      text += line + "\n" + indent;
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  return text + line;
+}
+
+// One line per model of the table: name, where it works, summary.
+std::string model_table_lines(const std::string& indent)
+{
+  std::string text;
+  for(const auto& e : model_table()) {
+    text += indent + e.name;
+    if(!(e.in_2d && e.in_3d))
+      text += e.in_2d ? " (2D only)" : " (3D only)";
+    text += "\n" + indent + "    " + e.summary + "\n";
+  }
+  return text;
+}
+
+} // namespace
+
+std::string main_help()
 {
   return R"(usage: spring-motion COMMAND [OPTIONS]
 
@@ -17,12 +52,15 @@ commands:
                     mesh with them; write VTU / PVD / Medit and a JSON report
   check MESH        validity (exact orientation) and quality (equiangle skewness)
                     of a mesh as it is
-  convert MESH OUT  the same mesh in another format (.mesh or .vtu)
+  convert MESH OUT  the same mesh in another format (.mesh, .msh, .su2 or .vtu)
 
   spring-motion COMMAND --help    options of a command
   spring-motion --version         the version
 
-Meshes: Medit ASCII (.mesh, Dimension 2 or 3) and Gmsh ASCII 2.2 / 4.1 (.msh).
+Meshes read: Medit ASCII (.mesh, Dimension 2 or 3), Gmsh 2.2 / 4.1 ASCII and
+binary (.msh), SU2 (.su2). Written: .vtu, .pvd, .mesh, .msh (Gmsh 4.1 ASCII), .su2.
+Stiffness models (deform --model):
+  )" + model_name_list("  ", 76) + R"(
 Exit status: 0 success, 1 bad input (nothing written), 2 bad command line,
 3 motion stopped at an inverted step / invalid mesh, 4 internal error,
 130 interrupted (outputs removed).
@@ -30,7 +68,7 @@ See docs/cli.md.
 )";
 }
 
-const char* deform_help()
+std::string deform_help()
 {
   return R"(usage: spring-motion deform MESH --moving REF[,REF...] [--fixed REF[,REF...]] MOTION
                             [--steps N] [--model NAME] [--solver cg|cg-sgs|sor|paper] [--omega W]
@@ -43,8 +81,8 @@ interior follows as a network of springs (stiffness from the model, recomputed
 at every step). After every step each element's orientation is checked with
 exact predicates; a step that inverts one stops the run at the last valid state.
 
-MESH      Medit .mesh or Gmsh .msh (2.2 or 4.1, ASCII). A mesh of triangles whose
-          z are all 0 is 2D; tetrahedra make it 3D.
+MESH      Medit .mesh, Gmsh .msh (2.2 or 4.1, ASCII or binary) or SU2 .su2. A
+          mesh of triangles whose z are all 0 is 2D; tetrahedra make it 3D.
 REF       a boundary label: a number (Medit reference, Gmsh physical tag) or a
           Gmsh physical name, e.g. --moving airfoil or --moving 1,2.
 
@@ -72,9 +110,8 @@ MOTION (exactly one):
 
 options:
   --steps N            increments (default 100)
-  --model NAME         stiffness model: lineal, lineal_p2, blom, zeng_ethier,
-                       grid_scaled (default), torsional (2D only)
-  --solver NAME        cg: conjugate gradients preconditioned by a multigrid
+  --model NAME         stiffness model (default grid_scaled), one of:
+)" + model_table_lines("                         ") + R"(  --solver NAME        cg: conjugate gradients preconditioned by a multigrid
                        cycle, stopped when the estimated error <= tolerance
                        (default); cg-sgs: the same with a symmetric
                        Gauss-Seidel sweep as the preconditioner;
@@ -93,6 +130,8 @@ options:
                        .pvd   a ParaView time series: OUT_<step>.vtu beside it for
                               step 0, every K-th step and the last valid step
                        .mesh  the final mesh as Medit, labels kept
+                       .msh   the final mesh as Gmsh 4.1 ASCII, labels kept
+                       .su2   the final mesh as SU2, labels kept as markers
   --every K            steps between .pvd frames (default 1)
   --report R.json      the run's JSON report (format spring_motion.report/1)
   --quiet              no progress bar
@@ -114,11 +153,11 @@ example:
 )";
 }
 
-const char* check_help()
+std::string check_help()
 {
   return R"(usage: spring-motion check MESH
 
-Reads MESH (Medit .mesh or Gmsh .msh) and prints: dimension and sizes, every
+Reads MESH (Medit .mesh, Gmsh .msh ASCII or binary, SU2 .su2) and prints: dimension and sizes, every
 label with what it marks, orientation counts, and, for a valid mesh, element
 size and edge length ranges and histograms of the equiangle skewness R (Eq. 13
 of the paper; 0 equilateral, 1 degenerate) over all elements and over those
@@ -128,16 +167,18 @@ An element is degenerate when its exact orientation is zero, inverted when it
 overlaps a neighbour across a shared edge (2D) or face (3D).
 
 exit status: 0 valid, 1 bad input, 2 bad command line, 3 degenerate or inverted
-elements (listed on stderr with their lines).
+elements (listed on stderr with their lines; for a binary .msh, the byte
+offsets at which they are written).
 )";
 }
 
-const char* convert_help()
+std::string convert_help()
 {
   return R"(usage: spring-motion convert MESH OUT
 
-Writes the mesh of MESH (Medit .mesh or Gmsh .msh) to OUT, by extension:
-.mesh (Medit ASCII, labels kept, coordinates that read back bit for bit) or
+Writes the mesh of MESH (Medit .mesh, Gmsh .msh ASCII or binary, SU2 .su2)
+to OUT, by extension: .mesh (Medit ASCII), .msh (Gmsh 4.1 ASCII) or .su2
+(SU2), each with the labels and coordinates that read back bit for bit; or
 .vtu (with the element labels as cell data 'label').
 
 exit status: 0 written, 1 bad input (nothing written), 2 bad command line.

@@ -31,9 +31,14 @@ Output_file classify_output(const std::string& path)
     return {path, Output_file::Kind::medit};
   if(has_extension(path, ".pvd"))
     return {path, Output_file::Kind::pvd};
+  if(has_extension(path, ".msh"))
+    return {path, Output_file::Kind::gmsh};
+  if(has_extension(path, ".su2"))
+    return {path, Output_file::Kind::su2};
   const std::string ext = fs::path(path).extension().string();
   throw Input_error(path, 0, (ext.empty() ? std::string("no file extension") : "unknown output extension '" + ext + "'") +
-                               ": expected .vtu (final mesh), .pvd (time series) or .mesh (Medit)");
+                               ": expected .vtu (final mesh), .pvd (time series), .mesh (Medit), .msh (Gmsh 4.1) or "
+                               ".su2 (SU2)");
 }
 
 bool same_file(const std::string& a, const std::string& b)
@@ -111,6 +116,8 @@ void write_final_mesh(const Output_file& output, const Mesh_setup<D>& setup, con
   const Indexed_mesh<D> mesh = moved_mesh(setup, deformer);
   if(output.kind == Output_file::Kind::medit)
     write_medit(mesh, output.path);
+  else if(output.kind == Output_file::Kind::gmsh || output.kind == Output_file::Kind::su2)
+    write_mesh(output.path, mesh); // by extension: Gmsh 4.1 ASCII or SU2
   else {
     std::vector<Data_array> point_data, cell_data;
     state_arrays(setup, deformer, point_data, cell_data);

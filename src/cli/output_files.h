@@ -16,16 +16,17 @@ namespace spring_motion {
 namespace cli {
 
 /// An --output, by extension: the final mesh as .vtu (with the point
-/// displacement and per-cell R, validity and label) or .mesh (Medit, with the
-/// file's labels), or a .pvd time series of .vtu frames.
+/// displacement and per-cell R, validity and label), .mesh (Medit), .msh
+/// (Gmsh 4.1 ASCII) or .su2 (SU2), the last three with the file's labels; or a
+/// .pvd time series of .vtu frames.
 struct Output_file
 {
-  enum class Kind { vtu, medit, pvd };
+  enum class Kind { vtu, medit, pvd, gmsh, su2 };
   std::string path;
   Kind kind = Kind::vtu;
 };
 
-/// Throws Input_error for an extension other than .vtu, .mesh, .pvd.
+/// Throws Input_error for an extension other than .vtu, .mesh, .msh, .su2, .pvd.
 Output_file classify_output(const std::string& path);
 
 /// Whether two paths name the same existing file (or are the same path).

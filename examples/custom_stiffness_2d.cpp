@@ -5,7 +5,7 @@
 // EdgeStiffnessModel concept in spring_motion/stiffness/Stiffness_model.h.
 // description() is optional: it names the model in reports.
 #include <spring_motion/spring_motion.h>
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
 
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesher_2.h>

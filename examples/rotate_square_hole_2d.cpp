@@ -1,7 +1,7 @@
 // Rotates the square hole of a Mesh_2 domain by 30 degrees in 30 steps with
 // every stiffness model and prints one table row per model.
 #include <spring_motion/spring_motion.h>
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
 
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesher_2.h>

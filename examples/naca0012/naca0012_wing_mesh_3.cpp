@@ -1,14 +1,14 @@
 // Copyright (c) 2026 SpringMotion developers.
 //
-// The 3D test domains of METHOD.md section 6, meshed by CGAL Mesh_3. This is
-// the library's only Mesh_3 translation unit (Mesh_3 compiles slowly).
+// The 3D test domains of docs/method.md ("Test cases"), meshed by CGAL Mesh_3.
+// This is the project's only Mesh_3 translation unit (Mesh_3 compiles slowly).
 //
 // How the wing domain is built, and why:
 //
 // * Input surface: one Surface_mesh with two components, the wing and the
 //   sphere; the domain is the region between them (Mesh_3's inside test
 //   counts ray crossings). The wing is the NACA0012 section (closed trailing
-//   edge, METHOD.md section 6) with `section_intervals` cosine-spaced
+//   edge, docs/method.md) with `section_intervals` cosine-spaced
 //   intervals per surface, extruded over z in [-1, 1] in `span_intervals`
 //   strips, closed by flat tip caps (a fan from (0.4, 0): the section is
 //   convex). The sphere is an icosahedron subdivided `sphere_subdivisions`
@@ -45,10 +45,10 @@
 //   a time limit (see sliver_bound_deg), so they do not depend on the
 //   machine's speed.
 
-#include <spring_motion/domains/Naca0012_wing_mesh_3.h>
+#include <naca0012/Naca0012_wing_mesh_3.h>
 
 #include <spring_motion/Error.h>
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
 #include <spring_motion/io/read_mesh.h>
 #include <spring_motion/io/write_mesh.h>
 #include <spring_motion/mesh_traits/Mesh_complex_3_in_triangulation_3.h>
@@ -325,6 +325,13 @@ void make_naca0012_wing_mesh_3(Mesh_3_c3t3& c3t3, const Naca0012_wing_mesh_3_opt
                                           p::exude(p::time_limit = 0, p::sliver_bound = o.sliver_bound));
 }
 
+std::string naca0012_wing_cache_file_name(const Naca0012_wing_mesh_3_options& options)
+{
+  char name[64];
+  std::snprintf(name, sizeof name, "naca0012_wing_%016llx.mesh", (unsigned long long)fnv1a(options.key()));
+  return name;
+}
+
 Indexed_mesh<3> naca0012_wing_mesh_3(const Naca0012_wing_mesh_3_options& options, const std::string& cache_dir,
                                      bool* generated, double* seconds)
 {
@@ -338,9 +345,7 @@ Indexed_mesh<3> naca0012_wing_mesh_3(const Naca0012_wing_mesh_3_options& options
   const std::string key = options.key();
   std::string path;
   if(!cache_dir.empty()) {
-    char name[64];
-    std::snprintf(name, sizeof name, "/naca0012_wing_%016llx.mesh", (unsigned long long)fnv1a(key));
-    path = cache_dir + name;
+    path = cache_dir + "/" + naca0012_wing_cache_file_name(options);
     std::ifstream in(path);
     std::string first;
     if(in && std::getline(in, first) && first == "# naca0012_wing_mesh_3 " + key) {

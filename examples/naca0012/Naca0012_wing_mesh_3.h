@@ -1,6 +1,10 @@
 // Copyright (c) 2026 SpringMotion developers.
-#ifndef SPRING_MOTION_DOMAINS_NACA0012_WING_MESH_3_H
-#define SPRING_MOTION_DOMAINS_NACA0012_WING_MESH_3_H
+//
+// The paper's 3D test domain, for the demos, the tests and the benchmark
+// (library naca0012_domains, examples/naca0012/CMakeLists.txt). Not part of
+// the installed SpringMotion library.
+#ifndef SPRING_MOTION_EXAMPLES_NACA0012_WING_MESH_3_H
+#define SPRING_MOTION_EXAMPLES_NACA0012_WING_MESH_3_H
 
 #include <spring_motion/Indexed_mesh.h>
 
@@ -30,11 +34,11 @@ using Mesh_3_c3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Mesh_3_triangulation
 constexpr int body_patch = 1;
 constexpr int outer_patch = 2;
 
-/// Parameters of the NACA0012 wing in a sphere (METHOD.md section 6): chord
+/// Parameters of the NACA0012 wing in a sphere (docs/method.md, "Test cases"): chord
 /// 1 from x = 0 to 1, span 2 (z in [-1, 1]), flat tips, sharp trailing edge;
 /// sphere of radius `far_field_radius` centred at (0.5, 0, 0). Defaults give
 /// the paper's 57924 nodes and 308850 tetrahedra within 10%; why each default
-/// has its value: src/naca0012_wing_mesh_3.cpp.
+/// has its value: examples/naca0012/naca0012_wing_mesh_3.cpp.
 struct Naca0012_wing_mesh_3_options
 {
   std::size_t section_intervals = 100; ///< input polyline intervals per surface (upper, lower), cosine spaced
@@ -67,14 +71,18 @@ void make_naca0012_wing_mesh_3(Mesh_3_c3t3& c3t3, const Naca0012_wing_mesh_3_opt
 /// The wing mesh as an `Indexed_mesh<3>`: boundary facets labelled
 /// `body_patch` (wing) or `outer_patch` (sphere), element labels the Mesh_3
 /// subdomain index. If `cache_dir` is not empty the mesh is read from
-/// `cache_dir/naca0012_wing_<hash>.mesh` when that file exists (the hash is
-/// of `options.key()`, which the file also holds in a comment) and written
+/// `cache_dir/naca0012_wing_cache_file_name(options)` when that file exists
+/// (the file also holds `options.key()` in a comment) and written
 /// there (atomically, through a temporary file and a rename) after meshing.
 /// `generated` (if given) tells whether the mesh was generated rather than read,
 /// `seconds` how long generation or reading took.
 Indexed_mesh<3> naca0012_wing_mesh_3(const Naca0012_wing_mesh_3_options& options = {},
                                      const std::string& cache_dir = "", bool* generated = nullptr,
                                      double* seconds = nullptr);
+
+/// The name (no folder) of the file in which `naca0012_wing_mesh_3()` caches
+/// the mesh of these options: naca0012_wing_<hash of options.key()>.mesh.
+std::string naca0012_wing_cache_file_name(const Naca0012_wing_mesh_3_options& options);
 
 /// Whether a boundary point of the generated (undeformed) wing mesh lies on
 /// the wing rather than on the far-field sphere.

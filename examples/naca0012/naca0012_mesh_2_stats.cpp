@@ -1,11 +1,11 @@
 // Copyright (c) 2026 SpringMotion developers.
 //
-// Generates the 2D NACA0012 test domain (METHOD.md section 6) with the default
+// Generates the 2D NACA0012 test domain (docs/method.md, "Test cases") with the default
 // and the fine options and prints its size: nodes and triangles of the domain,
 // boundary nodes on the airfoil and on the far field, and generation time.
 // Writes no file.
 
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
 
 #include <chrono>
 #include <cstddef>

@@ -135,6 +135,17 @@ int main(int argc, char** argv)
   app.add_option("--odt", mesh_options.odt_iterations, "iterations of Mesh_3's ODT smoothing (0: none)")
       ->type_name("N")
       ->capture_default_str();
+  app.add_option("--edge-size", mesh_options.size_at_trailing_edge,
+                 "Mesh_3 edge size on the trailing edge and the tip outlines")
+      ->type_name("H")
+      ->capture_default_str();
+  app.add_option("--sliver-smoothing", mesh_options.sliver_smoothing_bound,
+                 "after Mesh_3, move interior vertices of tetrahedra with a dihedral angle below DEG (0: no)")
+      ->type_name("DEG")
+      ->capture_default_str();
+  app.add_option("--sliver-smoothing-sweeps", mesh_options.sliver_smoothing_sweeps, "sweeps of that pass")
+      ->type_name("N")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   bool generated = false;

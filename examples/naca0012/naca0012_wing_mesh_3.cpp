@@ -49,6 +49,7 @@
 
 #include <spring_motion/Error.h>
 #include <naca0012/Naca0012_mesh_2.h>
+#include <spring_motion/internal/angles.h>
 #include <spring_motion/io/read_mesh.h>
 #include <spring_motion/io/write_mesh.h>
 #include <spring_motion/mesh_traits/Mesh_complex_3_in_triangulation_3.h>
@@ -63,6 +64,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -230,6 +232,130 @@ Indexed_mesh<3> to_indexed_mesh(const Mesh_3_c3t3& c3t3)
 // the wing) keeps them short.
 constexpr double sliver_bound_deg = 10;
 
+// Mesh_3 leaves slivers (four nearly coplanar vertices: two dihedral angles
+// near 180 degrees, four near 0) whose vertices it cannot move: its
+// perturber leaves vertices on feature curves alone and its exuder changes
+// weights, not positions. Next to the wing's tip outline such a sliver is
+// what stops the motion (docs/naca0012_3d/README.md). This pass moves the
+// vertices of every tetrahedron near the wing with a dihedral angle below `bound_deg` to
+// the best of a few trial positions: the one that most raises the smallest
+// dihedral angle of the tetrahedra around the vertex, keeping every one of
+// them in its orientation. Interior vertices move freely; a vertex on a tip
+// cap (a plane) slides in it, one on the wing's side (an extrusion in z)
+// slides along z, so the wing's surface does not change; vertices on the
+// tip outline, on two kinds of facet, and on the sphere stay. The
+// connectivity does not change. Sequential, in a fixed order: deterministic.
+void smooth_slivers(Indexed_mesh<3>& m, double bound_deg, std::size_t sweeps)
+{
+  constexpr double near_wing = 0.25; // chords from the wing
+  using P = std::array<double, 3>;
+  const std::size_t n = m.points.size(), nt = m.elements.size();
+  // how each vertex may move: anywhere (interior), in a tip cap, along the
+  // wing's side, or not at all (on the sphere, or on two kinds of facet)
+  constexpr unsigned char fixed = 0, interior = 1, cap = 2, side = 3;
+  std::vector<unsigned char> kind(n, interior);
+  auto at_tip = [&](std::uint32_t v) { return std::abs(std::abs(m.points[v][2]) - 1) < 1e-9; };
+  for(std::size_t f = 0; f < m.boundary_facets.size(); ++f) {
+    const auto& facet = m.boundary_facets[f];
+    const bool on_cap = at_tip(facet[0]) && at_tip(facet[1]) && at_tip(facet[2]);
+    for(const auto v : facet) {
+      const unsigned char k = m.boundary_labels[f] != body_patch ? fixed : on_cap ? cap : side;
+      kind[v] = kind[v] == interior ? k : (kind[v] == k ? k : fixed);
+    }
+  }
+  std::vector<std::vector<std::size_t>> around(n);
+  for(std::size_t t = 0; t < nt; ++t)
+    for(const auto v : m.elements[t])
+      around[v].push_back(t);
+  auto points_of = [&](std::size_t t) {
+    std::array<P, 4> p;
+    for(int k = 0; k < 4; ++k)
+      p[k] = m.points[m.elements[t][k]];
+    return p;
+  };
+  auto smallest_angle = [&](const std::array<P, 4>& p) {
+    const auto a = internal::dihedral_angles(p);
+    return *std::min_element(a.begin(), a.end());
+  };
+  std::vector<double> sign(nt);
+  for(std::size_t t = 0; t < nt; ++t)
+    sign[t] = internal::signed_measure(points_of(t)) > 0 ? 1 : -1;
+  // the smallest dihedral angle around v; -1 if a tetrahedron turned over
+  auto quality = [&](std::size_t v) {
+    double q = M_PI;
+    for(const auto t : around[v]) {
+      const auto p = points_of(t);
+      if(sign[t] * internal::signed_measure(p) <= 0)
+        return -1.0;
+      q = std::min(q, smallest_angle(p));
+    }
+    return q;
+  };
+  // trial directions: the 26 to the neighbours of a cube's centre, the 8 of
+  // them in the plane z = 0 for a cap, +-z for the side
+  std::vector<P> free_directions, cap_directions, side_directions{{0, 0, 1}, {0, 0, -1}};
+  for(int i = -1; i <= 1; ++i)
+    for(int j = -1; j <= 1; ++j)
+      for(int k = -1; k <= 1; ++k)
+        if(i || j || k) {
+          const double l = std::sqrt(double(i * i + j * j + k * k));
+          free_directions.push_back({i / l, j / l, k / l});
+          if(k == 0)
+            cap_directions.push_back({i / l, j / l, 0});
+        }
+  // a sliding vertex stays on its part of the wing
+  auto on_its_part = [&](unsigned char k, const P& p) {
+    if(k == cap)
+      return p[0] > 0 && p[0] < 1 && std::abs(p[1]) < naca0012_half_thickness(p[0]) - 1e-4;
+    if(k == side)
+      return std::abs(p[2]) < 1 - 1e-6;
+    return true;
+  };
+  const double bound = bound_deg * M_PI / 180;
+  for(std::size_t sweep = 0; sweep < sweeps; ++sweep) {
+    bool moved = false;
+    for(std::size_t t = 0; t < nt; ++t) {
+      // only near the wing, where the motion is large: a pass over all the
+      // slivers of the mesh would take minutes
+      const auto p = points_of(t);
+      const Point centroid((p[0][0] + p[1][0] + p[2][0] + p[3][0]) / 4, (p[0][1] + p[1][1] + p[2][1] + p[3][1]) / 4,
+                           (p[0][2] + p[1][2] + p[2][2] + p[3][2]) / 4);
+      if(wing_distance(centroid) > near_wing || smallest_angle(p) >= bound)
+        continue;
+      for(const auto v : m.elements[t]) {
+        if(kind[v] == fixed)
+          continue;
+        const auto& directions =
+            kind[v] == interior ? free_directions : kind[v] == cap ? cap_directions : side_directions;
+        const P start = m.points[v];
+        double shortest = std::numeric_limits<double>::infinity();
+        for(const auto s : around[v])
+          for(const auto u : m.elements[s])
+            if(u != v)
+              shortest = std::min(shortest, internal::distance<3>(start, m.points[u]));
+        double best = quality(v);
+        P best_point = start;
+        for(const double step : {0.2, 0.08, 0.03})
+          for(const auto& d : directions) {
+            for(int c = 0; c < 3; ++c)
+              m.points[v][c] = start[c] + step * shortest * d[c];
+            if(!on_its_part(kind[v], m.points[v]))
+              continue;
+            const double q = quality(v);
+            if(q > best) {
+              best = q;
+              best_point = m.points[v];
+            }
+          }
+        m.points[v] = best_point;
+        moved = moved || best_point != start;
+      }
+    }
+    if(!moved)
+      break;
+  }
+}
+
 void check_positive(double v, const char* name)
 {
   SPRING_MOTION_CHECK(std::isfinite(v) && v > 0, name << " must be positive and finite, got " << v);
@@ -246,8 +372,10 @@ std::string Naca0012_wing_mesh_3_options::key() const
     << " size_at_wing=" << size_at_wing << " size_at_trailing_edge=" << size_at_trailing_edge
     << " size_growth=" << size_growth << " facet_distance=" << facet_distance << " facet_angle=" << facet_angle
     << " cell_radius_edge_ratio=" << cell_radius_edge_ratio << " sliver_bound=" << sliver_bound;
-  if(odt_iterations > 0) // absent by default, so the default mesh keeps its cache name
+  if(odt_iterations > 0) // absent when 0, so older meshes keep their cache names
     s << " odt=" << odt_iterations;
+  if(sliver_smoothing_bound > 0)
+    s << " sliver_smoothing=" << sliver_smoothing_bound << "/" << sliver_smoothing_sweeps;
   s << " cgal=" << CGAL_VERSION_NR;
   return s.str();
 }
@@ -265,6 +393,9 @@ void make_naca0012_wing_mesh_3(Mesh_3_c3t3& c3t3, const Naca0012_wing_mesh_3_opt
   SPRING_MOTION_CHECK(o.facet_angle > 0 && o.facet_angle <= 30, "facet_angle must be in (0, 30]");
   SPRING_MOTION_CHECK(o.cell_radius_edge_ratio >= 2, "cell_radius_edge_ratio must be at least 2");
   SPRING_MOTION_CHECK(o.sliver_bound > 0 && o.sliver_bound < 90, "sliver_bound must be in (0, 90) degrees");
+  SPRING_MOTION_CHECK(o.sliver_smoothing_bound >= 0 && o.sliver_smoothing_bound < 70.5,
+                      "sliver_smoothing_bound must be in [0, 70.5) degrees (no tetrahedron has all its dihedral "
+                      "angles above 70.53)");
 
   const auto sec = naca_section(o.section_intervals);
   const std::size_t ns = sec.size(), nz = o.span_intervals;
@@ -359,6 +490,8 @@ Indexed_mesh<3> naca0012_wing_mesh_3(const Naca0012_wing_mesh_3_options& options
   Mesh_3_c3t3 c3t3;
   make_naca0012_wing_mesh_3(c3t3, options);
   Indexed_mesh<3> mesh = to_indexed_mesh(c3t3);
+  if(options.sliver_smoothing_bound > 0)
+    smooth_slivers(mesh, options.sliver_smoothing_bound, options.sliver_smoothing_sweeps);
   done(true);
   if(!path.empty()) {
     const std::string tmp = path + ".tmp";

@@ -237,32 +237,20 @@ constexpr double sliver_bound_deg = 10;
 // perturber leaves vertices on feature curves alone and its exuder changes
 // weights, not positions. Next to the wing's tip outline such a sliver is
 // what stops the motion (docs/naca0012_3d/README.md). This pass moves the
-// vertices of every tetrahedron near the wing with a dihedral angle below `bound_deg` to
-// the best of a few trial positions: the one that most raises the smallest
-// dihedral angle of the tetrahedra around the vertex, keeping every one of
-// them in its orientation. Interior vertices move freely; a vertex on a tip
-// cap (a plane) slides in it, one on the wing's side (an extrusion in z)
-// slides along z, so the wing's surface does not change; vertices on the
-// tip outline, on two kinds of facet, and on the sphere stay. The
-// connectivity does not change. Sequential, in a fixed order: deterministic.
+// interior vertices of every tetrahedron with a dihedral angle below
+// `bound_deg` to the best of a few trial positions: the one that most raises
+// the smallest dihedral angle of the tetrahedra around the vertex, keeping
+// every one of them in its orientation. Boundary vertices stay, so the wing
+// and the sphere do not change; the connectivity does not change either.
+// Sequential and in a fixed order: deterministic.
 void smooth_slivers(Indexed_mesh<3>& m, double bound_deg, std::size_t sweeps)
 {
-  constexpr double near_wing = 0.25; // chords from the wing
   using P = std::array<double, 3>;
   const std::size_t n = m.points.size(), nt = m.elements.size();
-  // how each vertex may move: anywhere (interior), in a tip cap, along the
-  // wing's side, or not at all (on the sphere, or on two kinds of facet)
-  constexpr unsigned char fixed = 0, interior = 1, cap = 2, side = 3;
-  std::vector<unsigned char> kind(n, interior);
-  auto at_tip = [&](std::uint32_t v) { return std::abs(std::abs(m.points[v][2]) - 1) < 1e-9; };
-  for(std::size_t f = 0; f < m.boundary_facets.size(); ++f) {
-    const auto& facet = m.boundary_facets[f];
-    const bool on_cap = at_tip(facet[0]) && at_tip(facet[1]) && at_tip(facet[2]);
-    for(const auto v : facet) {
-      const unsigned char k = m.boundary_labels[f] != body_patch ? fixed : on_cap ? cap : side;
-      kind[v] = kind[v] == interior ? k : (kind[v] == k ? k : fixed);
-    }
-  }
+  std::vector<char> on_boundary(n, 0);
+  for(const auto& f : m.boundary_facets)
+    for(const auto v : f)
+      on_boundary[v] = 1;
   std::vector<std::vector<std::size_t>> around(n);
   for(std::size_t t = 0; t < nt; ++t)
     for(const auto v : m.elements[t])
@@ -291,42 +279,24 @@ void smooth_slivers(Indexed_mesh<3>& m, double bound_deg, std::size_t sweeps)
     }
     return q;
   };
-  // trial directions: the 26 to the neighbours of a cube's centre, the 8 of
-  // them in the plane z = 0 for a cap, +-z for the side
-  std::vector<P> free_directions, cap_directions, side_directions{{0, 0, 1}, {0, 0, -1}};
+  // the 26 directions to the neighbours of a cube's centre
+  std::vector<P> directions;
   for(int i = -1; i <= 1; ++i)
     for(int j = -1; j <= 1; ++j)
       for(int k = -1; k <= 1; ++k)
         if(i || j || k) {
           const double l = std::sqrt(double(i * i + j * j + k * k));
-          free_directions.push_back({i / l, j / l, k / l});
-          if(k == 0)
-            cap_directions.push_back({i / l, j / l, 0});
+          directions.push_back({i / l, j / l, k / l});
         }
-  // a sliding vertex stays on its part of the wing
-  auto on_its_part = [&](unsigned char k, const P& p) {
-    if(k == cap)
-      return p[0] > 0 && p[0] < 1 && std::abs(p[1]) < naca0012_half_thickness(p[0]) - 1e-4;
-    if(k == side)
-      return std::abs(p[2]) < 1 - 1e-6;
-    return true;
-  };
   const double bound = bound_deg * M_PI / 180;
   for(std::size_t sweep = 0; sweep < sweeps; ++sweep) {
     bool moved = false;
     for(std::size_t t = 0; t < nt; ++t) {
-      // only near the wing, where the motion is large: a pass over all the
-      // slivers of the mesh would take minutes
-      const auto p = points_of(t);
-      const Point centroid((p[0][0] + p[1][0] + p[2][0] + p[3][0]) / 4, (p[0][1] + p[1][1] + p[2][1] + p[3][1]) / 4,
-                           (p[0][2] + p[1][2] + p[2][2] + p[3][2]) / 4);
-      if(wing_distance(centroid) > near_wing || smallest_angle(p) >= bound)
+      if(smallest_angle(points_of(t)) >= bound)
         continue;
       for(const auto v : m.elements[t]) {
-        if(kind[v] == fixed)
+        if(on_boundary[v])
           continue;
-        const auto& directions =
-            kind[v] == interior ? free_directions : kind[v] == cap ? cap_directions : side_directions;
         const P start = m.points[v];
         double shortest = std::numeric_limits<double>::infinity();
         for(const auto s : around[v])
@@ -335,12 +305,10 @@ void smooth_slivers(Indexed_mesh<3>& m, double bound_deg, std::size_t sweeps)
               shortest = std::min(shortest, internal::distance<3>(start, m.points[u]));
         double best = quality(v);
         P best_point = start;
-        for(const double step : {0.2, 0.08, 0.03})
+        for(const double step : {0.2, 0.1, 0.05, 0.02})
           for(const auto& d : directions) {
             for(int c = 0; c < 3; ++c)
               m.points[v][c] = start[c] + step * shortest * d[c];
-            if(!on_its_part(kind[v], m.points[v]))
-              continue;
             const double q = quality(v);
             if(q > best) {
               best = q;

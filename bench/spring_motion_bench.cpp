@@ -16,9 +16,9 @@
 // iterations against the relaxation factor on the 2D cases' systems).
 // Progress goes to stderr, the tables to stdout.
 #include <spring_motion/spring_motion.h>
-#include <spring_motion/domains/Naca0012_mesh_2.h>
-#if __has_include(<spring_motion/domains/Naca0012_wing_mesh_3.h>)
-#include <spring_motion/domains/Naca0012_wing_mesh_3.h>
+#include <naca0012/Naca0012_mesh_2.h>
+#if __has_include(<naca0012/Naca0012_wing_mesh_3.h>)
+#include <naca0012/Naca0012_wing_mesh_3.h>
 #define SPRING_MOTION_BENCH_HAS_WING 1
 #endif
 

@@ -4,19 +4,19 @@
 // operator() (k from the edge's current length and those angles); see the
 // EdgeStiffnessModel concept in spring_motion/stiffness/Stiffness_model.h.
 // description() is optional: it names the model in reports.
+//
+//   custom_stiffness_2d [mesh]   (default: data/square_hole_2d.mesh)
+//
+// The hole (boundary label 2) turns by 60 degrees about the origin.
 #include <spring_motion/spring_motion.h>
-#include <spring_motion/domains/Naca0012_mesh_2.h>
-
-#include <CGAL/Delaunay_mesh_size_criteria_2.h>
-#include <CGAL/Delaunay_mesher_2.h>
+#include <spring_motion/io/read_mesh.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <list>
+#include <string>
 
 namespace sm = spring_motion;
-using CDT = sm::Mesh_2_cdt;
 
 // Lineal springs stiffened by the cotangents of the facing angles:
 // k = (1/l) (1 + sum_m cot^2 theta_m). cot^2 grows without bound as an angle
@@ -39,29 +39,22 @@ struct Cotangent_stiffness
   sm::Model_description description(int) const { return {"cotangent", {}}; }
 };
 
-int main()
+int main(int argc, char** argv)
 {
-  // [-2,2]^2 with the hole [-0.5,0.5]^2, refined by Mesh_2
-  CDT mesh;
-  auto square = [&](double s) {
-    const CDT::Point c[4] = {{-s, -s}, {s, -s}, {s, s}, {-s, s}};
-    for(int i = 0; i < 4; ++i)
-      mesh.insert_constraint(c[i], c[(i + 1) % 4]);
-  };
-  square(2.0);
-  square(0.5);
-  std::list<CDT::Point> seeds{CDT::Point(0, 0)}; // the hole
-  CGAL::refine_Delaunay_mesh_2(mesh, seeds.begin(), seeds.end(), CGAL::Delaunay_mesh_size_criteria_2<CDT>(0.125, 0.15));
+  const std::string path = argc > 1 ? argv[1] : SPRING_MOTION_DATA_DIR "/square_hole_2d.mesh";
+  const sm::Mesh_file file = sm::read_mesh(path);
+  if(file.dimension != 2) {
+    std::fprintf(stderr, "%s is not a 2D mesh\n", path.c_str());
+    return 1;
+  }
 
-  // the hole turns by 60 degrees in 30 steps; the outer square stays
-  auto on_hole = [](const std::array<double, 2>& p) { return std::max(std::abs(p[0]), std::abs(p[1])) < 1.0; };
+  // the hole turns by 60 degrees in 30 steps; the outer boundary stays
   sm::Deform_options options;
   options.number_of_steps = 30;
-  CDT lineal = mesh;
-  const auto with_lineal = sm::deform(lineal, sm::moving_boundary_where(on_hole), sm::Pitch_motion<2>(60, {0, 0}),
-                                      sm::Lineal_stiffness{}, options);
-  const auto with_ours = sm::deform(mesh, sm::moving_boundary_where(on_hole), sm::Pitch_motion<2>(60, {0, 0}),
-                                    Cotangent_stiffness{}, options);
+  const sm::Pitch_motion<2> motion(60, {0, 0});
+  sm::Indexed_mesh<2> lineal = file.mesh_2, ours = file.mesh_2;
+  const auto with_lineal = sm::deform(lineal, sm::Moving_boundary_labels{{2}}, motion, sm::Lineal_stiffness{}, options);
+  const auto with_ours = sm::deform(ours, sm::Moving_boundary_labels{{2}}, motion, Cotangent_stiffness{}, options);
 
   std::printf("%-10s %-9s %10s %18s\n", "model", "completed", "last_deg", "worst_R_near_hole");
   for(const auto* r : {&with_lineal, &with_ours})

@@ -1,7 +1,7 @@
 // deform() in 3D on CGAL meshes: a Delaunay Triangulation_3 and a Mesh_3
 // complex (a box with a box-shaped hole, made by the library's Mesh_3 domain).
 #include <spring_motion/deform.h>
-#include <spring_motion/domains/Naca0012_wing_mesh_3.h>
+#include <naca0012/Naca0012_wing_mesh_3.h>
 #include <spring_motion/mesh_traits/Mesh_complex_3_in_triangulation_3.h>
 #include <spring_motion/mesh_traits/Triangulation_3.h>
 #include <spring_motion/motion/Pitch_motion.h>

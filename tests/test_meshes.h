@@ -2,7 +2,7 @@
 #ifndef SPRING_MOTION_TESTS_TEST_MESHES_H
 #define SPRING_MOTION_TESTS_TEST_MESHES_H
 
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
 
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesher_2.h>

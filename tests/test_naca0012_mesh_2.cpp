@@ -1,5 +1,5 @@
 // Copyright (c) 2026 SpringMotion developers.
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
 
 #include <spring_motion/Error.h>
 

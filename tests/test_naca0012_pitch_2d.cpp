@@ -1,7 +1,7 @@
 // A shortened run of the paper's 2D case (the full one is the demo
 // examples/naca0012_pitch_2d): 20 steps to 20 degrees on the coarse mesh.
 #include <spring_motion/spring_motion.h>
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
 
 #include <catch2/catch.hpp>
 

@@ -12,7 +12,7 @@
 //       vertices moving, far field fixed) and prints the largest difference
 //       from the positions in CLI.mesh; exit status 0 when it is at most 1e-12.
 #include <spring_motion/deform.h>
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
 #include <spring_motion/io/read_mesh.h>
 #include <spring_motion/io/write_mesh.h>
 #include <spring_motion/mesh_traits/Triangulation_2.h>

@@ -1,7 +1,7 @@
 // Copyright (c) 2026 SpringMotion developers.
 //
-// The 3D test domains of docs/method.md ("Test cases"), meshed by CGAL Mesh_3. This is
-// the library's only Mesh_3 translation unit (Mesh_3 compiles slowly).
+// The 3D test domains of docs/method.md ("Test cases"), meshed by CGAL Mesh_3.
+// This is the project's only Mesh_3 translation unit (Mesh_3 compiles slowly).
 //
 // How the wing domain is built, and why:
 //
@@ -45,10 +45,11 @@
 //   a time limit (see sliver_bound_deg), so they do not depend on the
 //   machine's speed.
 
-#include <spring_motion/domains/Naca0012_wing_mesh_3.h>
+#include <naca0012/Naca0012_wing_mesh_3.h>
 
 #include <spring_motion/Error.h>
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
+#include <spring_motion/internal/angles.h>
 #include <spring_motion/io/read_mesh.h>
 #include <spring_motion/io/write_mesh.h>
 #include <spring_motion/mesh_traits/Mesh_complex_3_in_triangulation_3.h>
@@ -63,6 +64,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -230,6 +232,98 @@ Indexed_mesh<3> to_indexed_mesh(const Mesh_3_c3t3& c3t3)
 // the wing) keeps them short.
 constexpr double sliver_bound_deg = 10;
 
+// Mesh_3 leaves slivers (four nearly coplanar vertices: two dihedral angles
+// near 180 degrees, four near 0) whose vertices it cannot move: its
+// perturber leaves vertices on feature curves alone and its exuder changes
+// weights, not positions. Next to the wing's tip outline such a sliver is
+// what stops the motion (docs/naca0012_3d/README.md). This pass moves the
+// interior vertices of every tetrahedron with a dihedral angle below
+// `bound_deg` to the best of a few trial positions: the one that most raises
+// the smallest dihedral angle of the tetrahedra around the vertex, keeping
+// every one of them in its orientation. Boundary vertices stay, so the wing
+// and the sphere do not change; the connectivity does not change either.
+// Sequential and in a fixed order: deterministic.
+void smooth_slivers(Indexed_mesh<3>& m, double bound_deg, std::size_t sweeps)
+{
+  using P = std::array<double, 3>;
+  const std::size_t n = m.points.size(), nt = m.elements.size();
+  std::vector<char> on_boundary(n, 0);
+  for(const auto& f : m.boundary_facets)
+    for(const auto v : f)
+      on_boundary[v] = 1;
+  std::vector<std::vector<std::size_t>> around(n);
+  for(std::size_t t = 0; t < nt; ++t)
+    for(const auto v : m.elements[t])
+      around[v].push_back(t);
+  auto points_of = [&](std::size_t t) {
+    std::array<P, 4> p;
+    for(int k = 0; k < 4; ++k)
+      p[k] = m.points[m.elements[t][k]];
+    return p;
+  };
+  auto smallest_angle = [&](const std::array<P, 4>& p) {
+    const auto a = internal::dihedral_angles(p);
+    return *std::min_element(a.begin(), a.end());
+  };
+  std::vector<double> sign(nt);
+  for(std::size_t t = 0; t < nt; ++t)
+    sign[t] = internal::signed_measure(points_of(t)) > 0 ? 1 : -1;
+  // the smallest dihedral angle around v; -1 if a tetrahedron turned over
+  auto quality = [&](std::size_t v) {
+    double q = M_PI;
+    for(const auto t : around[v]) {
+      const auto p = points_of(t);
+      if(sign[t] * internal::signed_measure(p) <= 0)
+        return -1.0;
+      q = std::min(q, smallest_angle(p));
+    }
+    return q;
+  };
+  // the 26 directions to the neighbours of a cube's centre
+  std::vector<P> directions;
+  for(int i = -1; i <= 1; ++i)
+    for(int j = -1; j <= 1; ++j)
+      for(int k = -1; k <= 1; ++k)
+        if(i || j || k) {
+          const double l = std::sqrt(double(i * i + j * j + k * k));
+          directions.push_back({i / l, j / l, k / l});
+        }
+  const double bound = bound_deg * M_PI / 180;
+  for(std::size_t sweep = 0; sweep < sweeps; ++sweep) {
+    bool moved = false;
+    for(std::size_t t = 0; t < nt; ++t) {
+      if(smallest_angle(points_of(t)) >= bound)
+        continue;
+      for(const auto v : m.elements[t]) {
+        if(on_boundary[v])
+          continue;
+        const P start = m.points[v];
+        double shortest = std::numeric_limits<double>::infinity();
+        for(const auto s : around[v])
+          for(const auto u : m.elements[s])
+            if(u != v)
+              shortest = std::min(shortest, internal::distance<3>(start, m.points[u]));
+        double best = quality(v);
+        P best_point = start;
+        for(const double step : {0.2, 0.1, 0.05, 0.02})
+          for(const auto& d : directions) {
+            for(int c = 0; c < 3; ++c)
+              m.points[v][c] = start[c] + step * shortest * d[c];
+            const double q = quality(v);
+            if(q > best) {
+              best = q;
+              best_point = m.points[v];
+            }
+          }
+        m.points[v] = best_point;
+        moved = moved || best_point != start;
+      }
+    }
+    if(!moved)
+      break;
+  }
+}
+
 void check_positive(double v, const char* name)
 {
   SPRING_MOTION_CHECK(std::isfinite(v) && v > 0, name << " must be positive and finite, got " << v);
@@ -246,8 +340,10 @@ std::string Naca0012_wing_mesh_3_options::key() const
     << " size_at_wing=" << size_at_wing << " size_at_trailing_edge=" << size_at_trailing_edge
     << " size_growth=" << size_growth << " facet_distance=" << facet_distance << " facet_angle=" << facet_angle
     << " cell_radius_edge_ratio=" << cell_radius_edge_ratio << " sliver_bound=" << sliver_bound;
-  if(odt_iterations > 0) // absent by default, so the default mesh keeps its cache name
+  if(odt_iterations > 0) // absent when 0, so older meshes keep their cache names
     s << " odt=" << odt_iterations;
+  if(sliver_smoothing_bound > 0)
+    s << " sliver_smoothing=" << sliver_smoothing_bound << "/" << sliver_smoothing_sweeps;
   s << " cgal=" << CGAL_VERSION_NR;
   return s.str();
 }
@@ -265,6 +361,9 @@ void make_naca0012_wing_mesh_3(Mesh_3_c3t3& c3t3, const Naca0012_wing_mesh_3_opt
   SPRING_MOTION_CHECK(o.facet_angle > 0 && o.facet_angle <= 30, "facet_angle must be in (0, 30]");
   SPRING_MOTION_CHECK(o.cell_radius_edge_ratio >= 2, "cell_radius_edge_ratio must be at least 2");
   SPRING_MOTION_CHECK(o.sliver_bound > 0 && o.sliver_bound < 90, "sliver_bound must be in (0, 90) degrees");
+  SPRING_MOTION_CHECK(o.sliver_smoothing_bound >= 0 && o.sliver_smoothing_bound < 70.5,
+                      "sliver_smoothing_bound must be in [0, 70.5) degrees (no tetrahedron has all its dihedral "
+                      "angles above 70.53)");
 
   const auto sec = naca_section(o.section_intervals);
   const std::size_t ns = sec.size(), nz = o.span_intervals;
@@ -325,6 +424,13 @@ void make_naca0012_wing_mesh_3(Mesh_3_c3t3& c3t3, const Naca0012_wing_mesh_3_opt
                                           p::exude(p::time_limit = 0, p::sliver_bound = o.sliver_bound));
 }
 
+std::string naca0012_wing_cache_file_name(const Naca0012_wing_mesh_3_options& options)
+{
+  char name[64];
+  std::snprintf(name, sizeof name, "naca0012_wing_%016llx.mesh", (unsigned long long)fnv1a(options.key()));
+  return name;
+}
+
 Indexed_mesh<3> naca0012_wing_mesh_3(const Naca0012_wing_mesh_3_options& options, const std::string& cache_dir,
                                      bool* generated, double* seconds)
 {
@@ -338,9 +444,7 @@ Indexed_mesh<3> naca0012_wing_mesh_3(const Naca0012_wing_mesh_3_options& options
   const std::string key = options.key();
   std::string path;
   if(!cache_dir.empty()) {
-    char name[64];
-    std::snprintf(name, sizeof name, "/naca0012_wing_%016llx.mesh", (unsigned long long)fnv1a(key));
-    path = cache_dir + name;
+    path = cache_dir + "/" + naca0012_wing_cache_file_name(options);
     std::ifstream in(path);
     std::string first;
     if(in && std::getline(in, first) && first == "# naca0012_wing_mesh_3 " + key) {
@@ -354,6 +458,8 @@ Indexed_mesh<3> naca0012_wing_mesh_3(const Naca0012_wing_mesh_3_options& options
   Mesh_3_c3t3 c3t3;
   make_naca0012_wing_mesh_3(c3t3, options);
   Indexed_mesh<3> mesh = to_indexed_mesh(c3t3);
+  if(options.sliver_smoothing_bound > 0)
+    smooth_slivers(mesh, options.sliver_smoothing_bound, options.sliver_smoothing_sweeps);
   done(true);
   if(!path.empty()) {
     const std::string tmp = path + ".tmp";

@@ -1,6 +1,10 @@
 // Copyright (c) 2026 SpringMotion developers.
-#ifndef SPRING_MOTION_DOMAINS_NACA0012_MESH_2_H
-#define SPRING_MOTION_DOMAINS_NACA0012_MESH_2_H
+//
+// The paper's 2D test domain, for the demos, the tests and the benchmark
+// (library naca0012_domains, examples/naca0012/CMakeLists.txt). Not part of
+// the installed SpringMotion library.
+#ifndef SPRING_MOTION_EXAMPLES_NACA0012_MESH_2_H
+#define SPRING_MOTION_EXAMPLES_NACA0012_MESH_2_H
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -26,7 +30,7 @@ double naca0012_half_thickness(double x);
 
 /// Parameters of the NACA0012-in-a-circle domain. Defaults reproduce the
 /// paper's 2D grid size (3875 nodes, 7587 triangles, within 10%). Why each
-/// default has its value: src/naca0012_mesh_2.cpp.
+/// default has its value: examples/naca0012/naca0012_mesh_2.cpp.
 struct Naca0012_mesh_2_options
 {
   /// Points of the initial airfoil polyline, cosine spaced in x, half on each

@@ -1,6 +1,6 @@
 // Copyright (c) 2026 SpringMotion developers.
 //
-// The 2D NACA0012 test domain of docs/method.md ("Test cases").
+// The 2D NACA0012 test domain of docs/method.md, "Test cases".
 //
 // Generation parameters, and why (numbers measured with CGAL 5.5.1):
 //
@@ -12,7 +12,7 @@
 //   is what 3875 nodes and 7587 triangles imply (triangles = 2 nodes -
 //   boundary nodes for a domain with one hole).
 // * Far field: `far_field_nodes` = 33 points uniform in angle from angle 0
-//   (downstream), radius 15 chords around (0.5, 0) (the paper's domain).
+//   (downstream), radius 15 chords around (0.5, 0) (docs/method.md, "Test cases").
 // * Shape bound 0.125: Mesh_2's B is the squared sine of the smallest angle
 //   (about 20.7 degrees); the paper's value, Mesh_2's default, and the largest
 //   for which Mesh_2 guarantees termination.
@@ -44,7 +44,7 @@
 //   fine options).
 // * No Lloyd/ODT smoothing: it would move boundary vertices off the curve.
 
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
 
 #include <spring_motion/Error.h>
 

@@ -8,12 +8,13 @@
 #include <spring_motion/spring_motion.h>
 #include <spring_motion/io/network_output.h>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -49,51 +50,28 @@ struct Options
   }
 };
 
-// Reads the command line into `o`. An example's own options go to
-// `own(argument, value)` first, which returns whether it took the argument
-// (calling value() for the next one); anything unknown prints `usage` and
-// exits, with 0 only for --help.
-template <class Own>
-void parse(int argc, char** argv, Options& o, const char* usage, Own&& own)
+// Declares the options both demos take on `app`; an example adds its own
+// before parsing (CLI11 writes the --help text from these declarations).
+inline void add_options(CLI::App& app, Options& o)
 {
-  for(int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if(i + 1 >= argc) {
-        std::cerr << o.program << ": " << a << " needs a value\n";
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if(own(a, value))
-      continue;
-    if(a == "--amplitude")
-      o.amplitude = std::stod(value());
-    else if(a == "--steps")
-      o.steps = std::stoul(value());
-    else if(a == "--report-dir")
-      o.report_dir = value();
-    else if(a == "--max-amplitude")
-      o.max_amplitude = true;
-    else if(a == "--max-substep-halvings")
-      o.max_substep_halvings = std::stoul(value());
-    else if(a == "--solver") {
-      const std::string v = value();
-      if(v != "paper" && v != "default") {
-        std::cerr << o.program << ": --solver takes paper or default\n";
-        std::exit(2);
-      }
-      o.paper_solver = v == "paper";
-    } else if(a == "--models") {
-      o.models.clear();
-      std::stringstream in(value());
-      for(std::string m; std::getline(in, m, ',');)
-        o.models.push_back(m);
-    } else {
-      std::cerr << usage;
-      std::exit(a == "--help" ? 0 : 2);
-    }
-  }
+  app.add_option("--amplitude", o.amplitude, "pitch amplitude alpha_m in degrees (both signs are run)")
+      ->capture_default_str();
+  app.add_option("--steps", o.steps, "number of steps n")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--report-dir", o.report_dir, "write <model>_pos/_neg.json and .vtu per run into DIR")
+      ->type_name("DIR");
+  app.add_flag("--max-amplitude", o.max_amplitude, "find each model's largest amplitude by bisection");
+  app.add_option("--max-substep-halvings", o.max_substep_halvings,
+                 "retry an inverting step as up to 2^K substeps (0: the paper's method)")
+      ->capture_default_str()
+      ->type_name("K");
+  app.add_option_function<std::string>(
+         "--solver", [&o](const std::string& v) { o.paper_solver = v == "paper"; },
+         "default: CG + multigrid to an estimated error of 1e-6; paper: SOR stopped by the paper's Eq. 12")
+      ->check(CLI::IsMember({"default", "paper"}));
+  app.add_option("--models", o.models, "comma-separated stiffness models to run")
+      ->delimiter(',')
+      ->type_name("a,b,...")
+      ->capture_default_str();
 }
 
 inline std::size_t number_of_moving(const std::vector<sm::Vertex_role>& roles)

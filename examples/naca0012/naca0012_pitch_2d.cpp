@@ -15,13 +15,11 @@
 #include "naca0012_demo.h"
 
 #include <spring_motion/spring_motion.h>
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
 #include <spring_motion/stiffness/model_by_name.h>
 
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <iostream>
 #include <string>
 
 namespace sm = spring_motion;
@@ -35,20 +33,13 @@ int main(int argc, char** argv)
   // the paper's comparison; --models picks any name of sm::model_table()
   options.models = {"lineal", "lineal_p2", "blom", "zeng_ethier", "grid_scaled", "torsional"};
   std::string mesh = "coarse";
-  demo::parse(argc, argv, options,
-              "usage: naca0012_pitch_2d [--mesh coarse|fine] [--amplitude DEG] [--steps N]\n"
-              "                         [--report-dir DIR] [--max-amplitude] [--models a,b,...]\n"
-              "                         [--solver default|paper] [--max-substep-halvings K]\n",
-              [&](const std::string& a, auto& value) {
-                if(a != "--mesh")
-                  return false;
-                mesh = value();
-                return true;
-              });
-  if(mesh != "coarse" && mesh != "fine") {
-    std::cerr << "naca0012_pitch_2d: --mesh takes coarse or fine, not '" << mesh << "'\n";
-    return 2;
-  }
+  CLI::App app("The paper's 2D case: a NACA0012 airfoil pitching about its quarter chord, every stiffness model.",
+               "naca0012_pitch_2d");
+  app.add_option("--mesh", mesh, "coarse: the paper's size (3875 nodes); fine: about 4x as many nodes")
+      ->check(CLI::IsMember({"coarse", "fine"}))
+      ->capture_default_str();
+  demo::add_options(app, options);
+  CLI11_PARSE(app, argc, argv);
 
   const auto t0 = std::chrono::steady_clock::now();
   sm::Mesh_2_cdt cdt;

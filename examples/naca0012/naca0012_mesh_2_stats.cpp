@@ -5,7 +5,7 @@
 // boundary nodes on the airfoil and on the far field, and generation time.
 // Writes no file.
 
-#include <spring_motion/domains/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_mesh_2.h>
 
 #include <chrono>
 #include <cstddef>

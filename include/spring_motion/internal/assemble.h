@@ -140,15 +140,22 @@ void assemble_block_system(const Spring_network<D>& net, const std::vector<typen
       }
       return;
     }
+    // e e^T / |e|^2 from the edge vector scaled by its largest component:
+    // |e|^2 of a tiny edge (1e-300) would underflow to 0 and divide by it
     std::array<double, D> d;
-    double l2 = 0;
+    double largest = 0;
     for(int c = 0; c < D; ++c) {
       d[c] = x[j][c] - x[i][c];
+      largest = std::max(largest, std::abs(d[c]));
+    }
+    double l2 = 0;
+    for(int c = 0; c < D; ++c) {
+      d[c] /= largest;
       l2 += d[c] * d[c];
     }
     for(int r = 0; r < D; ++r)
       for(int c = 0; c < D; ++c) {
-        const double b = w * d[r] * d[c] / l2;
+        const double b = w * (d[r] * d[c] / l2);
         off[r * D + c] = -b;
         diag[r * D + c] += b;
       }

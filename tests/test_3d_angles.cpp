@@ -2,7 +2,7 @@
 // tetrahedra, their use around the edges of a network built from a CGAL
 // Triangulation_3, R of Eq. 13 with Q_e = arccos(1/3), exact orientation.
 #include <spring_motion/Spring_network.h>
-#include <spring_motion/internal/angles.h>
+#include <spring_motion/internal/geometry/angles.h>
 #include <spring_motion/mesh_traits/Triangulation_3.h>
 #include <spring_motion/skewness.h>
 #include <spring_motion/validity.h>

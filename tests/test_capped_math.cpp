@@ -1,5 +1,5 @@
 // Capped arithmetic of the built-in stiffness models
-// (include/spring_motion/internal/capped_math.h): it is machinery, so the
+// (include/spring_motion/internal/geometry/capped_math.h): it is machinery, so the
 // public concept header must not carry it, and within the cap it returns what
 // the plain operation returns.
 #include <spring_motion/stiffness/Stiffness_model.h>
@@ -20,7 +20,7 @@ using namespace capped_math_probe;
 static_assert(std::is_same<decltype(spring_motion::internal::capped_pow(2.0, 3.0)), capped_math_probe::Absent>::value,
               "Stiffness_model.h must not declare the capped arithmetic");
 
-#include <spring_motion/internal/capped_math.h>
+#include <spring_motion/internal/geometry/capped_math.h>
 
 #include <catch2/catch.hpp>
 

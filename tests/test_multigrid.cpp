@@ -1,4 +1,4 @@
-// The multigrid preconditioner's coarse levels (internal/aggregation_multigrid.h),
+// The multigrid preconditioner's coarse levels (internal/solver/aggregation_multigrid.h),
 // checked on a scalar spring Laplacian and on a 2x2-block spring system built here: each coarse matrix is the
 // Galerkin product P^T A P of the level above (summed independently here),
 // the coarsest level is solved exactly, and the coarse correction
@@ -6,7 +6,7 @@
 // gradients need of a preconditioner. That the preconditioned solver reaches
 // the direct solution is in test_solver.cpp.
 #include <spring_motion/spring_motion.h>
-#include <spring_motion/internal/aggregation_multigrid.h>
+#include <spring_motion/internal/solver/aggregation_multigrid.h>
 
 #include "test_meshes.h"
 

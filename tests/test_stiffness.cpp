@@ -3,7 +3,7 @@
 // finite differences, the invariance of the motion under k -> c k, and user
 // models passed to deform().
 #include <spring_motion/spring_motion.h>
-#include <spring_motion/internal/assemble.h>
+#include <spring_motion/internal/solver/assemble.h>
 
 #include "test_meshes.h"
 

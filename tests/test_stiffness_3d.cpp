@@ -12,7 +12,7 @@
 //    and in the equilateral face 1-2-3 (60 degrees: 1/sin^2 = 4/3).
 // The longest initial edge is l0 = sqrt 2 (the paper's lambda = l0 / l).
 #include <spring_motion/Spring_network.h>
-#include <spring_motion/internal/assemble.h>
+#include <spring_motion/internal/solver/assemble.h>
 #include <spring_motion/stiffness/Blom_semi_torsional_stiffness.h>
 #include <spring_motion/stiffness/Grid_scaled_stiffness.h>
 #include <spring_motion/stiffness/Lineal_stiffness.h>

@@ -5,7 +5,7 @@
 // small test meshes exercise it (the library's default cut-off is 16384).
 #define SPRING_MOTION_PARALLEL_THRESHOLD 1
 #include <spring_motion/spring_motion.h>
-#include <spring_motion/internal/threads.h>
+#include <spring_motion/internal/solver/threads.h>
 
 #include "test_meshes.h"
 

@@ -24,7 +24,7 @@
 
 #include <spring_motion/spring_motion.h>
 #include <naca0012/Naca0012_wing_mesh_3.h>
-#include <spring_motion/internal/angles.h>
+#include <spring_motion/internal/geometry/angles.h>
 #include <spring_motion/mesh_traits/Indexed_mesh.h>
 #include <spring_motion/stiffness/model_by_name.h>
 

@@ -49,7 +49,7 @@
 
 #include <spring_motion/Error.h>
 #include <naca0012/Naca0012_mesh_2.h>
-#include <spring_motion/internal/angles.h>
+#include <spring_motion/internal/geometry/angles.h>
 #include <spring_motion/io/read_mesh.h>
 #include <spring_motion/io/write_mesh.h>
 #include <spring_motion/mesh_traits/Mesh_complex_3_in_triangulation_3.h>

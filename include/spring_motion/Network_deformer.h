@@ -9,10 +9,10 @@
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/Step_system_view.h>
 #include <spring_motion/Vertex_role.h>
-#include <spring_motion/internal/angles.h>
-#include <spring_motion/internal/assemble.h>
-#include <spring_motion/internal/free_system.h>
-#include <spring_motion/internal/threads.h>
+#include <spring_motion/internal/geometry/angles.h>
+#include <spring_motion/internal/solver/assemble.h>
+#include <spring_motion/internal/solver/free_system.h>
+#include <spring_motion/internal/solver/threads.h>
 #include <spring_motion/motion/Motion_description.h>
 #include <spring_motion/skewness.h>
 #include <spring_motion/validity.h>

@@ -3,8 +3,8 @@
 #define SPRING_MOTION_SPRING_NETWORK_H
 
 #include <spring_motion/Error.h>
-#include <spring_motion/internal/angles.h>
-#include <spring_motion/internal/simplex_tables.h>
+#include <spring_motion/internal/geometry/angles.h>
+#include <spring_motion/internal/geometry/simplex_tables.h>
 #include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
 
 #include <algorithm>

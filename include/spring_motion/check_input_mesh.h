@@ -3,9 +3,9 @@
 #define SPRING_MOTION_CHECK_INPUT_MESH_H
 
 #include <spring_motion/Error.h>
-#include <spring_motion/internal/element_points.h>
-#include <spring_motion/internal/exact_orientation.h>
-#include <spring_motion/internal/simplex_tables.h>
+#include <spring_motion/internal/geometry/element_points.h>
+#include <spring_motion/internal/geometry/exact_orientation.h>
+#include <spring_motion/internal/geometry/simplex_tables.h>
 
 #include <algorithm>
 #include <array>

@@ -3,8 +3,8 @@
 #define SPRING_MOTION_SKEWNESS_H
 
 #include <spring_motion/Spring_network.h>
-#include <spring_motion/internal/threads.h>
-#include <spring_motion/internal/angles.h>
+#include <spring_motion/internal/solver/threads.h>
+#include <spring_motion/internal/geometry/angles.h>
 
 #include <algorithm>
 #include <array>

@@ -5,9 +5,9 @@
 #include <spring_motion/Error.h>
 #include <spring_motion/check_input_mesh.h>
 #include <spring_motion/Spring_network.h>
-#include <spring_motion/internal/element_points.h>
-#include <spring_motion/internal/exact_orientation.h>
-#include <spring_motion/internal/threads.h>
+#include <spring_motion/internal/geometry/element_points.h>
+#include <spring_motion/internal/geometry/exact_orientation.h>
+#include <spring_motion/internal/solver/threads.h>
 
 #include <algorithm>
 #include <array>

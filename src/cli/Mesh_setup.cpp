@@ -5,7 +5,7 @@
 
 #include <spring_motion/Error.h>
 #include <spring_motion/Input_error.h>
-#include <spring_motion/internal/simplex_tables.h>
+#include <spring_motion/internal/geometry/simplex_tables.h>
 #include <spring_motion/mesh_traits/Indexed_mesh.h>
 
 #include <algorithm>

@@ -5,7 +5,7 @@
 #include "commands.h"
 
 #include <spring_motion/Input_error.h>
-#include <spring_motion/internal/angles.h>
+#include <spring_motion/internal/geometry/angles.h>
 #include <spring_motion/io/read_mesh.h>
 #include <spring_motion/skewness.h>
 #include <spring_motion/validity.h>

@@ -2,7 +2,7 @@
 #ifndef SPRING_MOTION_MESH_TRAITS_TRIANGULATION_2_H
 #define SPRING_MOTION_MESH_TRAITS_TRIANGULATION_2_H
 
-#include <spring_motion/internal/triangulation_points.h>
+#include <spring_motion/internal/geometry/triangulation_points.h>
 #include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
 
 #include <CGAL/Triangulation_2.h>

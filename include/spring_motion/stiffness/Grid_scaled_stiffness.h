@@ -2,7 +2,7 @@
 #ifndef SPRING_MOTION_STIFFNESS_GRID_SCALED_STIFFNESS_H
 #define SPRING_MOTION_STIFFNESS_GRID_SCALED_STIFFNESS_H
 
-#include <spring_motion/internal/capped_math.h>
+#include <spring_motion/internal/geometry/capped_math.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
 
 #include <cmath>

@@ -3,8 +3,8 @@
 #define SPRING_MOTION_STIFFNESS_TORSIONAL_STIFFNESS_H
 
 #include <spring_motion/Error.h>
-#include <spring_motion/internal/angles.h>
-#include <spring_motion/internal/capped_math.h>
+#include <spring_motion/internal/geometry/angles.h>
+#include <spring_motion/internal/geometry/capped_math.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
 
 #include <array>

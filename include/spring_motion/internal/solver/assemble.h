@@ -1,13 +1,13 @@
 // Copyright (c) 2026 SpringMotion developers.
-#ifndef SPRING_MOTION_INTERNAL_ASSEMBLE_H
-#define SPRING_MOTION_INTERNAL_ASSEMBLE_H
+#ifndef SPRING_MOTION_INTERNAL_SOLVER_ASSEMBLE_H
+#define SPRING_MOTION_INTERNAL_SOLVER_ASSEMBLE_H
 
 #include <spring_motion/Error.h>
 #include <spring_motion/Spring_network.h>
-#include <spring_motion/internal/threads.h>
-#include <spring_motion/internal/angles.h>
-#include <spring_motion/internal/element_points.h>
-#include <spring_motion/internal/free_system.h>
+#include <spring_motion/internal/solver/threads.h>
+#include <spring_motion/internal/geometry/angles.h>
+#include <spring_motion/internal/geometry/element_points.h>
+#include <spring_motion/internal/solver/free_system.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
 
 #include <algorithm>

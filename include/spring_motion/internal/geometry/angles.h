@@ -1,8 +1,8 @@
 // Copyright (c) 2026 SpringMotion developers.
-#ifndef SPRING_MOTION_INTERNAL_ANGLES_H
-#define SPRING_MOTION_INTERNAL_ANGLES_H
+#ifndef SPRING_MOTION_INTERNAL_GEOMETRY_ANGLES_H
+#define SPRING_MOTION_INTERNAL_GEOMETRY_ANGLES_H
 
-#include <spring_motion/internal/simplex_tables.h>
+#include <spring_motion/internal/geometry/simplex_tables.h>
 
 #include <algorithm>
 #include <array>

@@ -1,14 +1,14 @@
 // Copyright (c) 2026 SpringMotion developers.
-#ifndef SPRING_MOTION_INTERNAL_FREE_SYSTEM_H
-#define SPRING_MOTION_INTERNAL_FREE_SYSTEM_H
+#ifndef SPRING_MOTION_INTERNAL_SOLVER_FREE_SYSTEM_H
+#define SPRING_MOTION_INTERNAL_SOLVER_FREE_SYSTEM_H
 
 #include <spring_motion/Error.h>
 #include <spring_motion/Solver_options.h>
 #include <spring_motion/Spring_network.h>
-#include <spring_motion/internal/aggregation_multigrid.h>
-#include <spring_motion/internal/block_ops.h>
-#include <spring_motion/internal/stopping_test.h>
-#include <spring_motion/internal/threads.h>
+#include <spring_motion/internal/solver/aggregation_multigrid.h>
+#include <spring_motion/internal/solver/block_ops.h>
+#include <spring_motion/internal/solver/stopping_test.h>
+#include <spring_motion/internal/solver/threads.h>
 
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/cuthill_mckee_ordering.hpp>

@@ -1,10 +1,10 @@
 // Copyright (c) 2026 SpringMotion developers.
-#ifndef SPRING_MOTION_INTERNAL_AGGREGATION_MULTIGRID_H
-#define SPRING_MOTION_INTERNAL_AGGREGATION_MULTIGRID_H
+#ifndef SPRING_MOTION_INTERNAL_SOLVER_AGGREGATION_MULTIGRID_H
+#define SPRING_MOTION_INTERNAL_SOLVER_AGGREGATION_MULTIGRID_H
 
 #include <spring_motion/Error.h>
 #include <spring_motion/Spring_network.h>
-#include <spring_motion/internal/block_ops.h>
+#include <spring_motion/internal/solver/block_ops.h>
 
 #include <algorithm>
 #include <array>

@@ -1,6 +1,6 @@
 // Copyright (c) 2026 SpringMotion developers.
-#ifndef SPRING_MOTION_INTERNAL_THREADS_H
-#define SPRING_MOTION_INTERNAL_THREADS_H
+#ifndef SPRING_MOTION_INTERNAL_SOLVER_THREADS_H
+#define SPRING_MOTION_INTERNAL_SOLVER_THREADS_H
 
 #include <cstddef>
 

@@ -1,6 +1,6 @@
 // Copyright (c) 2026 SpringMotion developers.
-#ifndef SPRING_MOTION_INTERNAL_BLOCK_OPS_H
-#define SPRING_MOTION_INTERNAL_BLOCK_OPS_H
+#ifndef SPRING_MOTION_INTERNAL_SOLVER_BLOCK_OPS_H
+#define SPRING_MOTION_INTERNAL_SOLVER_BLOCK_OPS_H
 
 #include <array>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Copyright (c) 2026 SpringMotion developers.
-#ifndef SPRING_MOTION_INTERNAL_STOPPING_TEST_H
-#define SPRING_MOTION_INTERNAL_STOPPING_TEST_H
+#ifndef SPRING_MOTION_INTERNAL_SOLVER_STOPPING_TEST_H
+#define SPRING_MOTION_INTERNAL_SOLVER_STOPPING_TEST_H
 
 #include <spring_motion/Error.h>
 #include <spring_motion/Solver_options.h>

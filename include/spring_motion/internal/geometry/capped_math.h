@@ -1,6 +1,6 @@
 // Copyright (c) 2026 SpringMotion developers.
-#ifndef SPRING_MOTION_INTERNAL_CAPPED_MATH_H
-#define SPRING_MOTION_INTERNAL_CAPPED_MATH_H
+#ifndef SPRING_MOTION_INTERNAL_GEOMETRY_CAPPED_MATH_H
+#define SPRING_MOTION_INTERNAL_GEOMETRY_CAPPED_MATH_H
 
 #include <algorithm>
 #include <cmath>

@@ -67,15 +67,6 @@ struct Mesh
 };
 
 template <int D>
-const Indexed_mesh<D>& mesh_of(const Mesh_file& f)
-{
-  if constexpr(D == 2)
-    return f.mesh_2;
-  else
-    return f.mesh_3;
-}
-
-template <int D>
 py::array_t<double> points_array(const std::vector<std::array<double, D>>& points)
 {
   py::array_t<double> a({py::ssize_t(points.size()), py::ssize_t(D)});
@@ -395,7 +386,7 @@ std::string report_text(const Deform_report& report)
 template <int D>
 std::pair<std::vector<std::array<double, D>>, std::string> run_deform(const Mesh& m, const Deform_arguments& a)
 {
-  const Indexed_mesh<D>& mesh = mesh_of<D>(*m.file);
+  const Indexed_mesh<D>& mesh = m.file->template mesh<D>();
   if(a.model == "torsional" && D == 3)
     throw py::value_error("model='torsional': the torsional model is implemented in 2D only; for a 3D mesh expected "
                           "one of lineal, lineal_p2, blom, zeng_ethier, grid_scaled");
@@ -585,7 +576,7 @@ template <int D>
 void write_with(const std::string& path, const Mesh& m, const py::object& positions, const py::object& point_data,
                 const py::object& cell_data)
 {
-  Indexed_mesh<D> mesh = mesh_of<D>(*m.file);
+  Indexed_mesh<D> mesh = m.file->template mesh<D>();
   if(!positions.is_none())
     mesh.points = to_points<D>(positions, mesh.points.size(), "positions");
   const auto pd = to_data_arrays(point_data, mesh.points.size(), "point_data");

@@ -34,15 +34,6 @@ std::string data_path(const std::string& name)
   return std::string(SPRING_MOTION_TEST_DATA_DIR) + "/" + name;
 }
 
-template <int D>
-const Indexed_mesh<D>& mesh_of(const Mesh_file& f)
-{
-  if constexpr(D == 2)
-    return f.mesh_2;
-  else
-    return f.mesh_3;
-}
-
 // Bitwise equality of the coordinates (== would take -0.0 for 0.0).
 template <int D>
 bool same_bits(const std::vector<std::array<double, D>>& a, const std::vector<std::array<double, D>>& b)
@@ -120,7 +111,7 @@ void check_round_trip(const Indexed_mesh<D>& mesh, Format format)
   std::istringstream in(out.str());
   const Mesh_file back = su2 ? spring_motion::read_su2(in, "round-trip") : spring_motion::read_gmsh(in, "round-trip");
   REQUIRE(back.dimension == D);
-  const Indexed_mesh<D>& m = mesh_of<D>(back);
+  const Indexed_mesh<D>& m = back.template mesh<D>();
   CHECK(same_bits<D>(m.points, mesh.points));
   CHECK(m.elements == mesh.elements);
   CHECK(m.boundary_facets.size() == mesh.boundary_facets.size());

@@ -86,20 +86,13 @@ void check_same_mesh(const Indexed_mesh<D>& a, const Indexed_mesh<D>& b)
 }
 
 template <int D>
-const Indexed_mesh<D>& mesh_of(const Mesh_file& file);
-template <>
-const Indexed_mesh<2>& mesh_of<2>(const Mesh_file& file) { return file.mesh_2; }
-template <>
-const Indexed_mesh<3>& mesh_of<3>(const Mesh_file& file) { return file.mesh_3; }
-
-template <int D>
 void check_medit_round_trip(const Indexed_mesh<D>& mesh)
 {
   std::stringstream text;
   spring_motion::write_medit(mesh, text);
   const Mesh_file again = spring_motion::read_medit(text, "round trip");
   REQUIRE(again.dimension == D);
-  check_same_mesh(mesh, mesh_of<D>(again));
+  check_same_mesh(mesh, again.template mesh<D>());
 }
 
 // Numbers in the text of an XML element.

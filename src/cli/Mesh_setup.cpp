@@ -85,12 +85,7 @@ Mesh_setup<D> make_mesh_setup(const std::string& path, const Mesh_file& file, bo
   Mesh_setup<D> setup;
   setup.path = path;
   setup.file = &file;
-  const Indexed_mesh<D>& mesh = [&]() -> const Indexed_mesh<D>& {
-    if constexpr(D == 2)
-      return file.mesh_2;
-    else
-      return file.mesh_3;
-  }();
+  const Indexed_mesh<D>& mesh = file.mesh<D>();
   setup.mesh = &mesh;
   const std::size_t m = mesh.elements.size();
   setup.problems = check_input_mesh<D>(mesh.points, mesh.elements);

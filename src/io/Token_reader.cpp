@@ -219,6 +219,31 @@ bool parse_integer(std::string_view token, std::int64_t& value)
   return result.ec == std::errc() && result.ptr == last;
 }
 
+bool parse_label_comment(std::string_view comment, int& label, std::string& name)
+{
+  std::size_t i = 0;
+  while(i < comment.size() && (comment[i] == ' ' || comment[i] == '\t'))
+    ++i;
+  if(comment.compare(i, 6, "label ") != 0)
+    return false;
+  i += 6;
+  const std::size_t colon = comment.find(": ", i);
+  if(colon == std::string_view::npos)
+    return false;
+  std::int64_t value = 0;
+  if(!parse_integer(comment.substr(i, colon - i), value) || value < std::numeric_limits<int>::min()
+     || value > std::numeric_limits<int>::max())
+    return false;
+  std::string_view text = comment.substr(colon + 2);
+  while(!text.empty() && (text.back() == '\r' || text.back() == ' ' || text.back() == '\t'))
+    text.remove_suffix(1);
+  if(text.empty())
+    return false;
+  label = static_cast<int>(value);
+  name = std::string(text);
+  return true;
+}
+
 bool equal_ignoring_case(std::string_view a, std::string_view b)
 {
   if(a.size() != b.size())

@@ -156,6 +156,11 @@ bool parse_double(std::string_view token, double& value);
 /// Parses a whole token as a base-10 integer; false if not one or too large.
 bool parse_integer(std::string_view token, std::int64_t& value);
 
+/// Reads a comment "label N: NAME" (leading blanks allowed, trailing blanks
+/// and CR dropped), as the Medit and SU2 writers keep label names: true with
+/// N and NAME when the comment is one, false otherwise.
+bool parse_label_comment(std::string_view comment, int& label, std::string& name);
+
 /// ASCII case-insensitive equality, for Medit keywords and file extensions.
 bool equal_ignoring_case(std::string_view a, std::string_view b);
 

@@ -148,24 +148,10 @@ Mesh_file read_medit(std::istream& in, const std::string& name_for_errors)
   Raw_mesh raw;
   // "# label N: NAME", as write_medit() writes the label names
   reader.set_comment_handler([&raw](std::string_view comment, std::size_t) {
-    std::size_t i = 0;
-    while(i < comment.size() && (comment[i] == ' ' || comment[i] == '\t'))
-      ++i;
-    if(comment.compare(i, 6, "label ") != 0)
-      return;
-    i += 6;
-    const std::size_t colon = comment.find(": ", i);
-    if(colon == std::string_view::npos)
-      return;
-    std::int64_t label = 0;
-    if(!io_internal::parse_integer(comment.substr(i, colon - i), label) || label < std::numeric_limits<int>::min()
-       || label > std::numeric_limits<int>::max())
-      return;
-    std::string_view name = comment.substr(colon + 2);
-    while(!name.empty() && (name.back() == '\r' || name.back() == ' ' || name.back() == '\t'))
-      name.remove_suffix(1);
-    if(!name.empty())
-      raw.comment_names[static_cast<int>(label)] = std::string(name);
+    int label = 0;
+    std::string name;
+    if(io_internal::parse_label_comment(comment, label, name))
+      raw.comment_names[label] = std::move(name);
   });
   int dimension = 0;
   bool have_vertices = false;

@@ -61,24 +61,10 @@ public:
     reader_.set_comment_character('%');
     // "% label N: NAME", as write_su2() keeps label numbers and names.
     reader_.set_comment_handler([this](std::string_view comment, std::size_t) {
-      std::size_t i = 0;
-      while(i < comment.size() && (comment[i] == ' ' || comment[i] == '\t'))
-        ++i;
-      if(comment.compare(i, 6, "label ") != 0)
-        return;
-      i += 6;
-      const std::size_t colon = comment.find(": ", i);
-      if(colon == std::string_view::npos)
-        return;
-      std::int64_t label = 0;
-      if(!io_internal::parse_integer(comment.substr(i, colon - i), label)
-         || label < std::numeric_limits<int>::min() || label > std::numeric_limits<int>::max())
-        return;
-      std::string_view text = comment.substr(colon + 2);
-      while(!text.empty() && (text.back() == '\r' || text.back() == ' ' || text.back() == '\t'))
-        text.remove_suffix(1);
-      if(!text.empty())
-        comment_labels_[static_cast<int>(label)] = std::string(text);
+      int label = 0;
+      std::string label_name;
+      if(io_internal::parse_label_comment(comment, label, label_name))
+        comment_labels_[label] = std::move(label_name);
     });
   }
 

@@ -35,6 +35,17 @@ struct Mesh_file
   /// ("file.msh: byte 1234: ..."). Empty for text files.
   std::vector<std::size_t> element_offsets;
   std::vector<std::size_t> boundary_facet_offsets;
+
+  /// The mesh of dimension D (`mesh_2` or `mesh_3`), for code templated on D.
+  template <int D>
+  const Indexed_mesh<D>& mesh() const
+  {
+    static_assert(D == 2 || D == 3, "Mesh_file::mesh: dimension 2 or 3");
+    if constexpr(D == 2)
+      return mesh_2;
+    else
+      return mesh_3;
+  }
 };
 
 /// Reads a mesh file, choosing the format by extension (case-insensitive):

@@ -5,6 +5,7 @@
 #include <spring_motion/Error.h>
 #include <spring_motion/internal/geometry/angles.h>
 #include <spring_motion/internal/geometry/simplex_tables.h>
+#include <spring_motion/internal/solver/angle_slots.h>
 #include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
 
 #include <algorithm>
@@ -48,16 +49,6 @@ struct Spring_network
   // reached through edge adjacency_edge[...]
   std::vector<Index> adjacency_offsets, adjacency, adjacency_edge;
 
-  // edge -> the (element, local edge) slots around it, as element * edges_per_element + local;
-  // slot_position inverts edge_slots (slot -> its index there)
-  std::vector<Index> edge_slot_offsets, edge_slots, slot_position;
-
-  // 3D only: the unique triangular faces, their edges (local edge k opposite
-  // local vertex k) and edge -> (face, local) slots as face * 3 + local.
-  std::vector<std::array<Index, 3>> faces;
-  std::vector<Index> face_edges;
-  std::vector<Index> edge_face_slot_offsets, edge_face_slots, face_slot_position;
-
   std::vector<Facet> boundary_facets;
   std::vector<char> on_boundary;      // per vertex
   // labels of the boundary parts each vertex lies on: vertex_labels[offsets[i] .. offsets[i+1])
@@ -70,6 +61,10 @@ struct Spring_network
   std::size_t number_of_elements() const { return elements.size(); }
   std::size_t number_of_edges() const { return edges.size(); }
   Index edge_of(Index element, int local) const { return element_edges[element * edges_per_element + local]; }
+
+private:
+  friend struct internal::Network_access;
+  internal::Angle_slots slots_;
 };
 
 /// A labeled boundary facet given by the mesh (vertex indices into the network).
@@ -93,6 +88,7 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
   using Tables = typename Net::Tables;
   constexpr int E = Net::edges_per_element;
   Net net;
+  internal::Angle_slots& tab = internal::Network_access::slots(net);
   SPRING_MOTION_CHECK(!elements.empty(), "the mesh has no elements");
   const std::size_t n = points.size();
   SPRING_MOTION_CHECK(n < std::numeric_limits<Index>::max(), "too many vertices: " << n);
@@ -128,18 +124,18 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
       return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.slot < y.slot);
     });
     net.element_edges.resize(m * E);
-    net.edge_slots.resize(recs.size());
-    net.slot_position.resize(recs.size());
+    tab.edge_slots.resize(recs.size());
+    tab.slot_position.resize(recs.size());
     for(std::size_t r = 0; r < recs.size(); ++r) {
       if(r == 0 || recs[r].a != recs[r - 1].a || recs[r].b != recs[r - 1].b) {
         net.edges.push_back({recs[r].a, recs[r].b});
-        net.edge_slot_offsets.push_back(Index(r));
+        tab.edge_slot_offsets.push_back(Index(r));
       }
       net.element_edges[recs[r].slot] = Index(net.edges.size() - 1);
-      net.edge_slots[r] = recs[r].slot;
-      net.slot_position[recs[r].slot] = Index(r);
+      tab.edge_slots[r] = recs[r].slot;
+      tab.slot_position[recs[r].slot] = Index(r);
     }
-    net.edge_slot_offsets.push_back(Index(recs.size()));
+    tab.edge_slot_offsets.push_back(Index(recs.size()));
   }
 
   // CSR adjacency, neighbours in increasing order.
@@ -192,7 +188,7 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
       if(s - r == 1)
         net.boundary_facets.push_back(recs[r].first);
       if constexpr(D == 3)
-        net.faces.push_back({recs[r].first[0], recs[r].first[1], recs[r].first[2]});
+        tab.faces.push_back({recs[r].first[0], recs[r].first[1], recs[r].first[2]});
       r = s;
     }
     net.on_boundary.assign(n, 0);
@@ -226,31 +222,31 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
 
   // 3D: faces' edges and edge -> face slots, for face-angle models.
   if constexpr(D == 3) {
-    const std::size_t nf = net.faces.size();
-    net.face_edges.resize(3 * nf);
+    const std::size_t nf = tab.faces.size();
+    tab.face_edges.resize(3 * nf);
     std::vector<std::pair<Index, Index>> recs; // edge, slot
     recs.reserve(3 * nf);
     for(std::size_t f = 0; f < nf; ++f)
       for(int k = 0; k < 3; ++k) {
-        Index a = net.faces[f][(k + 1) % 3], b = net.faces[f][(k + 2) % 3];
+        Index a = tab.faces[f][(k + 1) % 3], b = tab.faces[f][(k + 2) % 3];
         if(a > b)
           std::swap(a, b);
         const auto it = std::lower_bound(net.edges.begin(), net.edges.end(), typename Net::Edge{a, b});
         const Index e = Index(it - net.edges.begin());
-        net.face_edges[3 * f + k] = e;
+        tab.face_edges[3 * f + k] = e;
         recs.push_back({e, Index(3 * f + k)});
       }
     std::sort(recs.begin(), recs.end());
-    net.edge_face_slot_offsets.assign(net.edges.size() + 1, 0);
-    net.edge_face_slots.resize(recs.size());
-    net.face_slot_position.resize(recs.size());
+    tab.edge_face_slot_offsets.assign(net.edges.size() + 1, 0);
+    tab.edge_face_slots.resize(recs.size());
+    tab.face_slot_position.resize(recs.size());
     for(std::size_t r = 0; r < recs.size(); ++r) {
-      ++net.edge_face_slot_offsets[recs[r].first + 1];
-      net.edge_face_slots[r] = recs[r].second;
-      net.face_slot_position[recs[r].second] = Index(r);
+      ++tab.edge_face_slot_offsets[recs[r].first + 1];
+      tab.edge_face_slots[r] = recs[r].second;
+      tab.face_slot_position[recs[r].second] = Index(r);
     }
     for(std::size_t e = 0; e < net.edges.size(); ++e)
-      net.edge_face_slot_offsets[e + 1] += net.edge_face_slot_offsets[e];
+      tab.edge_face_slot_offsets[e + 1] += tab.edge_face_slot_offsets[e];
   }
 
   for(const auto& e : net.edges)

@@ -45,6 +45,7 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
                             std::vector<double>& angles, int threads)
 {
   constexpr int E = Spring_network<D>::edges_per_element;
+  const Angle_slots& slots = angle_slots(net);
   const Angle_kind kind = model.angle_kind(D);
   const long m = long(net.number_of_elements());
   const bool by_face = (kind == Angle_kind::face && D == 3);
@@ -55,21 +56,21 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
       for(long t = 0; t < m; ++t) {
         const auto a = element_edge_angles<D>(element_points<D>(net.elements, x, std::size_t(t)));
         for(int j = 0; j < E; ++j)
-          angles[net.slot_position[std::size_t(t) * E + std::size_t(j)]] = a[std::size_t(j)];
+          angles[slots.slot_position[std::size_t(t) * E + std::size_t(j)]] = a[std::size_t(j)];
       }
     } else if constexpr(D == 3) {
-      const long nf = long(net.faces.size());
+      const long nf = long(slots.faces.size());
       angles.resize(std::size_t(nf) * 3);
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(nf)))
       for(long f = 0; f < nf; ++f) {
-        const auto& F = net.faces[std::size_t(f)];
+        const auto& F = slots.faces[std::size_t(f)];
         const auto a = triangle_angles<3>(x[F[0]], x[F[1]], x[F[2]]);
         for(int j = 0; j < 3; ++j)
-          angles[net.face_slot_position[3 * std::size_t(f) + std::size_t(j)]] = a[std::size_t(j)];
+          angles[slots.face_slot_position[3 * std::size_t(f) + std::size_t(j)]] = a[std::size_t(j)];
       }
     }
   }
-  const auto& off = by_face ? net.edge_face_slot_offsets : net.edge_slot_offsets;
+  const auto& off = by_face ? slots.edge_face_slot_offsets : slots.edge_slot_offsets;
   const long ne = long(net.number_of_edges());
   k.resize(std::size_t(ne));
   long bad = ne, coincident = ne;

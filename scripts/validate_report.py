@@ -111,6 +111,13 @@ def validate(path):
     check_number(path, "final_angle_deg", r["final_angle_deg"], nullable=True)
     check_histogram(path, "quality.moving_boundary", r["quality"]["moving_boundary"])
     check_histogram(path, "quality.all", r["quality"]["all"])
+    # added within version 1: optional for older reports, in [0, 180] when there
+    for part in ("moving_boundary", "all"):
+        if "min_angle_deg" in r["quality"][part]:
+            a = r["quality"][part]["min_angle_deg"]
+            check_number(path, f"quality.{part}.min_angle_deg", a)
+            if not 0 <= a <= 180:
+                fail(path, f"quality.{part}.min_angle_deg is {a}, outside [0, 180]")
 
 
 if __name__ == "__main__":

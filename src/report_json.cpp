@@ -97,6 +97,8 @@ Json step(const Step_report& s)
   j["max_size_ratio"] = number(s.max_size_ratio);
   j["max_skewness_moving"] = number(s.max_skewness_moving);
   j["max_skewness_all"] = number(s.max_skewness_all);
+  j["min_angle_deg_moving"] = number(s.min_angle_deg_moving);
+  j["min_angle_deg_all"] = number(s.min_angle_deg_all);
   j["seconds"] = Json{{"stiffness", number(s.seconds_stiffness)},
                       {"solve", number(s.seconds_solve)},
                       {"check", number(s.seconds_check)}};
@@ -127,6 +129,8 @@ void write_report_json(const Deform_report& r, std::ostream& out)
                      {"axis", numbers(m.axis)},
                      {"displacement", numbers(m.displacement)}};
   j["solver"] = solver(r.solver);
+  j["options"] = Json{{"max_substep_halvings", r.max_substep_halvings},
+                      {"quality_every_step", r.quality_every_step}};
   j["steps"] = Json::array();
   for(const auto& s : r.steps)
     j["steps"].push_back(step(s));
@@ -144,7 +148,10 @@ void write_report_json(const Deform_report& r, std::ostream& out)
   j["final_angle_deg"] = number(r.final_angle_deg);
   j["min_size_ratio"] = number(r.min_size_ratio);
   j["max_size_ratio"] = number(r.max_size_ratio);
-  j["quality"] = Json{{"moving_boundary", histogram(r.quality_moving)}, {"all", histogram(r.quality_all)}};
+  Json moving = histogram(r.quality_moving), all = histogram(r.quality_all);
+  moving["min_angle_deg"] = number(r.min_angle_deg_moving);
+  all["min_angle_deg"] = number(r.min_angle_deg_all);
+  j["quality"] = Json{{"moving_boundary", moving}, {"all", all}};
   j["seconds_total"] = number(r.seconds_total);
   out << j.dump(2) << "\n";
 }

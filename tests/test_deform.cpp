@@ -416,3 +416,50 @@ TEST_CASE("deform: an invalid move() is rolled back and reported", "[deform][mov
   CHECK(d.last_inverted_elements().empty());
   CHECK(d.fraction() == 2.0);
 }
+
+TEST_CASE("deform: the report's smallest angles are those of the final positions", "[deform][angles]")
+{
+  CDT cdt;
+  make_annulus(cdt);
+  const auto net = extract_spring_network(cdt).network;
+  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
+                                    return std::hypot(p[0], p[1]) < 1.0;
+                                  }));
+  Network_deformer<2> d(net, roles);
+  Deform_options options;
+  options.number_of_steps = 6;
+  const auto r = d.run(Pitch_motion<2>(40, {0, 0}), Grid_scaled_stiffness{}, options);
+  REQUIRE(r.completed);
+  // law of cosines on the written positions: independent of the library's angles
+  double moving = 180, all = 180;
+  const auto& x = d.positions();
+  for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
+    const auto& e = net.elements[t];
+    for(int k = 0; k < 3; ++k) {
+      const auto& p = x[e[k]];
+      const auto& q = x[e[(k + 1) % 3]];
+      const auto& o = x[e[(k + 2) % 3]];
+      const double a2 = (q[0] - o[0]) * (q[0] - o[0]) + (q[1] - o[1]) * (q[1] - o[1]);
+      const double b2 = (p[0] - o[0]) * (p[0] - o[0]) + (p[1] - o[1]) * (p[1] - o[1]);
+      const double c2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]);
+      // angle at o, opposite the side p-q
+      const double angle = std::acos((a2 + b2 - c2) / (2 * std::sqrt(a2 * b2))) * 180 / 3.141592653589793;
+      all = std::min(all, angle);
+      if(d.touches_moving(t))
+        moving = std::min(moving, angle);
+    }
+  }
+  INFO("report " << r.min_angle_deg_moving << " / " << r.min_angle_deg_all << ", recomputed " << moving << " / "
+                 << all);
+  CHECK(std::abs(r.min_angle_deg_moving - moving) < 1e-9);
+  CHECK(std::abs(r.min_angle_deg_all - all) < 1e-9);
+  CHECK(moving < 60); // not the default of an empty set
+  // the last step's figures describe the same final state
+  CHECK(r.steps.back().min_angle_deg_moving == r.min_angle_deg_moving);
+  CHECK(r.steps.back().min_angle_deg_all == r.min_angle_deg_all);
+  // the motion squeezed the mesh: smaller than at the start
+  Network_deformer<2> initial(net, roles);
+  std::vector<double> a;
+  element_skewness(net, initial.positions(), 0, &a);
+  CHECK(r.min_angle_deg_all <= *std::min_element(a.begin(), a.end()));
+}

@@ -105,6 +105,8 @@ void check_report(const Json& j, const Deform_report& r)
     check_number(js["max_size_ratio"], st.max_size_ratio);
     check_number(js["max_skewness_moving"], st.max_skewness_moving);
     check_number(js["max_skewness_all"], st.max_skewness_all);
+    check_number(js["min_angle_deg_moving"], st.min_angle_deg_moving);
+    check_number(js["min_angle_deg_all"], st.min_angle_deg_all);
     check_number(js["seconds"]["stiffness"], st.seconds_stiffness);
     check_number(js["seconds"]["solve"], st.seconds_solve);
     check_number(js["seconds"]["check"], st.seconds_check);
@@ -125,6 +127,10 @@ void check_report(const Json& j, const Deform_report& r)
   check_number(j["max_size_ratio"], r.max_size_ratio);
   check_histogram(j["quality"]["moving_boundary"], r.quality_moving);
   check_histogram(j["quality"]["all"], r.quality_all);
+  check_number(j["quality"]["moving_boundary"]["min_angle_deg"], r.min_angle_deg_moving);
+  check_number(j["quality"]["all"]["min_angle_deg"], r.min_angle_deg_all);
+  CHECK(j["options"]["max_substep_halvings"].get<std::size_t>() == r.max_substep_halvings);
+  CHECK(j["options"]["quality_every_step"].get<bool>() == r.quality_every_step);
   check_number(j["seconds_total"], r.seconds_total);
 }
 
@@ -184,6 +190,7 @@ TEST_CASE("write_report_json: a stopped run reports its first invalid step, non-
   REQUIRE(report.first_invalid);
   const Json j = written(report);
   check_report(j, report);
+  CHECK(j["options"]["max_substep_halvings"] == 2); // the run's options, so that it can be reproduced
   CHECK(j["solver"]["name"] == "sor");
   CHECK(j["solver"]["preconditioner"] == "none");
   CHECK(j["final_angle_deg"].is_null()); // a translation has no angle

@@ -101,3 +101,34 @@ TEST_CASE("skewness_histogram: ten bins [b/10, (b+1)/10), R = 1 in the last, ove
   for(double f : none.fractions)
     CHECK(f == 0);
 }
+
+TEST_CASE("element_skewness: smallest angles of known triangles and tetrahedra", "[skewness][angles]")
+{
+  // right isosceles triangle: 45 degrees; equilateral: 60
+  const auto tri = make_spring_network<2>({{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1.5, std::sqrt(3.0) / 2}},
+                                          {{0, 1, 2}, {1, 3, 4}});
+  std::vector<double> a2;
+  const auto r2 = element_skewness(tri, tri.points, 1, &a2);
+  REQUIRE(a2.size() == 2);
+  CHECK(std::abs(a2[0] - 45.0) < 1e-12);
+  CHECK(std::abs(a2[1] - 60.0) < 1e-12);
+  CHECK(r2 == element_skewness(tri, tri.points, 1)); // R does not depend on asking for angles
+
+  // regular tetrahedron: every dihedral angle arccos(1/3); corner tetrahedron:
+  // three right angles at the corner's edges, three arccos(1/sqrt(3))
+  const double s = 1 / std::sqrt(2.0);
+  const auto tet = make_spring_network<3>({{1, 0, -s}, {-1, 0, -s}, {0, 1, s}, {0, -1, s},
+                                           {10, 0, 0}, {11, 0, 0}, {10, 1, 0}, {10, 0, 1}},
+                                          {{0, 1, 2, 3}, {4, 5, 6, 7}});
+  std::vector<double> a3;
+  element_skewness(tet, tet.points, 1, &a3);
+  const double deg = 180 / 3.141592653589793;
+  CHECK(std::abs(a3[0] - std::acos(1.0 / 3.0) * deg) < 1e-12);
+  CHECK(std::abs(a3[1] - std::acos(1 / std::sqrt(3.0)) * deg) < 1e-12);
+
+  // a flattened tetrahedron (fourth vertex in the base's plane): angle 0
+  auto flat = tet.points;
+  flat[7] = {10.3, 0.3, 0};
+  element_skewness(tet, flat, 1, &a3);
+  CHECK(a3[1] < 1e-12);
+}

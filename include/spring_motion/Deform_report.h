@@ -38,6 +38,10 @@ struct Step_report
   double max_size_ratio = std::numeric_limits<double>::quiet_NaN();
   double max_skewness_moving = std::numeric_limits<double>::quiet_NaN();
   double max_skewness_all = std::numeric_limits<double>::quiet_NaN();
+  /// smallest angle in degrees (2D interior, 3D dihedral) after the step, of
+  /// the elements touching a moving vertex and of all elements
+  double min_angle_deg_moving = std::numeric_limits<double>::quiet_NaN();
+  double min_angle_deg_all = std::numeric_limits<double>::quiet_NaN();
   double seconds_stiffness = 0, seconds_solve = 0, seconds_check = 0;
 };
 
@@ -61,7 +65,8 @@ struct Deform_report
   Motion_description motion;
   std::size_t number_of_steps = 0;
   Solver_options solver;
-  
+  std::size_t max_substep_halvings = 0; ///< Deform_options::max_substep_halvings of the run
+  bool quality_every_step = true;       ///< Deform_options::quality_every_step of the run
 
   std::vector<Step_report> steps; ///< accepted steps, then the rejected one if any
   bool completed = false;         ///< every step valid: the motion reached t = 1
@@ -72,6 +77,10 @@ struct Deform_report
   /// R at the final (last valid) state, over the elements touching the moving
   /// boundary and over all elements
   Skewness_histogram quality_moving, quality_all;
+  /// smallest angle in degrees (2D interior, 3D dihedral) at the final state,
+  /// over the same two sets of elements
+  double min_angle_deg_moving = std::numeric_limits<double>::quiet_NaN();
+  double min_angle_deg_all = std::numeric_limits<double>::quiet_NaN();
   double min_size_ratio = 1;      ///< min over elements of measure / initial measure, final state
   double max_size_ratio = 1;      ///< max over elements of measure / initial measure, final state
   double seconds_total = 0;

@@ -126,6 +126,8 @@ public:
     rep.motion = internal::describe_motion(motion);
     rep.number_of_steps = options.number_of_steps;
     rep.solver = options.solver;
+    rep.max_substep_halvings = options.max_substep_halvings;
+    rep.quality_every_step = options.quality_every_step;
     visitor.on_start(rep);
     const std::size_t n = options.number_of_steps;
     rep.completed = true;
@@ -162,9 +164,11 @@ public:
     }
     rep.final_fraction = t_;
     rep.final_angle_deg = internal::motion_angle_deg(motion, t_);
-    const auto r = element_skewness(net_, positions_, options.solver.threads);
+    std::vector<double> min_angle;
+    const auto r = element_skewness(net_, positions_, options.solver.threads, &min_angle);
     rep.quality_all = skewness_histogram(r, [](std::size_t) { return true; });
     rep.quality_moving = skewness_histogram(r, [&](std::size_t t) { return touches_moving_[t] != 0; });
+    smallest_angles(min_angle, rep.min_angle_deg_moving, rep.min_angle_deg_all);
     rep.min_size_ratio = min_size_ratio(options.solver.threads);
     rep.max_size_ratio = max_size_ratio(options.solver.threads);
     rep.seconds_total = seconds_since(start);
@@ -274,14 +278,27 @@ private:
     return internal::signed_measure(p);
   }
 
+  // over the elements touching a moving vertex, and over all
+  void smallest_angles(const std::vector<double>& min_angle, double& moving, double& all) const
+  {
+    moving = all = 180;
+    for(std::size_t t = 0; t < min_angle.size(); ++t) {
+      all = std::min(all, min_angle[t]);
+      if(touches_moving_[t])
+        moving = std::min(moving, min_angle[t]);
+    }
+  }
+
   void step_quality(Step_report& s, int threads) const
   {
-    const auto r = element_skewness(net_, positions_, threads);
+    std::vector<double> min_angle;
+    const auto r = element_skewness(net_, positions_, threads, &min_angle);
     s.max_skewness_all = *std::max_element(r.begin(), r.end());
     s.max_skewness_moving = 0;
     for(std::size_t t = 0; t < r.size(); ++t)
       if(touches_moving_[t])
         s.max_skewness_moving = std::max(s.max_skewness_moving, r[t]);
+    smallest_angles(min_angle, s.min_angle_deg_moving, s.min_angle_deg_all);
     s.min_size_ratio = min_size_ratio(threads);
     s.max_size_ratio = max_size_ratio(threads);
   }

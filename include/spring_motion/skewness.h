@@ -64,20 +64,35 @@ struct Skewness_histogram
   double max = 0;
 };
 
-/// R of every element of the network at positions x.
+/// R of every element of the network at positions x. With `min_angle_deg`,
+/// also each element's smallest angle in degrees from the same angles
+/// (2D: interior angles; 3D: dihedral angles, which go to zero when a
+/// tetrahedron flattens, even a sliver whose faces all stay well shaped); an
+/// angle that is not a number counts as 0.
 template <int D>
 std::vector<double> element_skewness(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
-                                     int threads = 0)
+                                     int threads = 0, std::vector<double>* min_angle_deg = nullptr)
 {
   const long m = long(net.number_of_elements());
   std::vector<double> r(static_cast<std::size_t>(m));
+  if(min_angle_deg)
+    min_angle_deg->resize(std::size_t(m));
 #pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
   for(long t = 0; t < m; ++t) {
     const auto& e = net.elements[std::size_t(t)];
-    if constexpr(D == 2)
-      r[std::size_t(t)] = equiangle_skewness(x[e[0]], x[e[1]], x[e[2]]);
-    else
-      r[std::size_t(t)] = equiangle_skewness(x[e[0]], x[e[1]], x[e[2]], x[e[3]]);
+    const auto a = [&] {
+      if constexpr(D == 2)
+        return internal::triangle_angles<2>(x[e[0]], x[e[1]], x[e[2]]);
+      else
+        return internal::dihedral_angles({x[e[0]], x[e[1]], x[e[2]], x[e[3]]});
+    }();
+    r[std::size_t(t)] = equiangle_skewness_from_angles(a.data(), a.size(), D);
+    if(min_angle_deg) {
+      double smallest = internal::pi;
+      for(double v : a)
+        smallest = std::isfinite(v) ? std::min(smallest, v) : 0.0;
+      (*min_angle_deg)[std::size_t(t)] = smallest * (180 / internal::pi);
+    }
   }
   return r;
 }

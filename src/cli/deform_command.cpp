@@ -222,8 +222,11 @@ std::string summary_line(const Deform_report& r, const std::vector<Output_file>&
   std::size_t iterations = 0;
   for(const auto& s : r.steps)
     iterations += s.iterations;
+  const char* angle = r.dimension == 2 ? "min angle " : "min dihedral angle ";
   out << std::setprecision(3) << ", worst R " << r.quality_moving.max << " near the moving boundary ("
-      << r.quality_all.max << " overall), min size ratio " << r.min_size_ratio << ", " << iterations
+      << r.quality_all.max << " overall), " << angle << std::setprecision(2) << r.min_angle_deg_moving
+      << " deg near the moving boundary (" << r.min_angle_deg_all << " overall)" << std::setprecision(3)
+      << ", min size ratio " << r.min_size_ratio << ", " << iterations
       << " solver iterations, " << std::setprecision(2) << r.seconds_total << " s";
   if(!r.converged)
     out << ", SOME SOLVES DID NOT CONVERGE";

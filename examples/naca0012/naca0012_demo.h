@@ -119,13 +119,20 @@ struct Pitch_demo
 template <int D>
 sm::Skewness_histogram print_original(const Pitch_demo<D>& d)
 {
-  std::printf("%-*s %4s %4s %16s %8s %6s  %-30s %8s %11s %8s\n", d.model_width, "model", "dir", "done",
-              "first_invalid", "last_deg", "R_max", "R histogram 0..1 (%)", "min_size", "sweeps", "ms/step");
+  std::printf("%-*s %4s %4s %16s %8s %6s  %-30s %8s %9s %11s %8s\n", d.model_width, "model", "dir", "done",
+              "first_invalid", "last_deg", "R_max", "R histogram 0..1 (%)", "min_size", "min_angle", "sweeps",
+              "ms/step");
   sm::Network_deformer<D> original(d.net, d.roles);
   const auto r = sm::element_skewness(d.net, original.positions());
+  std::vector<double> angle;
+  sm::element_skewness(d.net, original.positions(), 0, &angle);
   const auto h = sm::skewness_histogram(r, [&](std::size_t t) { return original.touches_moving(t); });
-  std::printf("%-*s %4s %4s %16s %8.2f %6.3f  %-30s %8.3f %11s %8s\n", d.model_width, "original", "", "", "", 0.0,
-              h.max, histogram(h).c_str(), 1.0, "", "");
+  double min_angle = 180;
+  for(std::size_t t = 0; t < angle.size(); ++t)
+    if(original.touches_moving(t))
+      min_angle = std::min(min_angle, angle[t]);
+  std::printf("%-*s %4s %4s %16s %8.2f %6.3f  %-30s %8.3f %9.2f %11s %8s\n", d.model_width, "original", "", "", "",
+              0.0, h.max, histogram(h).c_str(), 1.0, min_angle, "", "");
   std::fflush(stdout);
   return h;
 }
@@ -151,10 +158,10 @@ void run_models(const Pitch_demo<D>& d, const typename Pitch_demo<D>::After_run&
         std::snprintf(invalid, sizeof invalid, "%zu (%.1f deg)", r.first_invalid->step, r.first_invalid->angle_deg);
       char sweeps[32];
       std::snprintf(sweeps, sizeof sweeps, "%.0f/%zu", double(total) / double(r.steps.size()), most);
-      std::printf("%-*s %4s %4s %16s %8.2f %6.3f  %-30s %8.3f %11s %8.*f\n", d.model_width, model.c_str(),
+      std::printf("%-*s %4s %4s %16s %8.2f %6.3f  %-30s %8.3f %9.2f %11s %8.*f\n", d.model_width, model.c_str(),
                   sign > 0 ? "+" : "-", r.completed ? "yes" : "no", invalid, r.final_angle_deg,
-                  r.quality_moving.max, histogram(r.quality_moving).c_str(), r.min_size_ratio, sweeps,
-                  d.ms_decimals, 1000 * r.seconds_total / double(r.steps.size()));
+                  r.quality_moving.max, histogram(r.quality_moving).c_str(), r.min_size_ratio,
+                  r.min_angle_deg_moving, sweeps, d.ms_decimals, 1000 * r.seconds_total / double(r.steps.size()));
       std::fflush(stdout);
       if(after_run)
         after_run(model, sign, r, final_state);

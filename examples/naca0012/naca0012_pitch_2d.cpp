@@ -52,7 +52,8 @@ int main(int argc, char** argv)
   std::printf("NACA0012 (%s mesh): %zu nodes, %zu triangles, %zu airfoil nodes (built in %.2f s)\n"
               "pitch about (0.25, 0), alpha = alpha_m sin(pi i / 2n), n = %zu, alpha_m = +/-%g deg\n"
               "solver: %s\n"
-              "R = equiangle skewness (Eq. 13) of the triangles touching the airfoil; histogram in %% per 0.1 bin\n\n",
+              "R = equiangle skewness (Eq. 13) of the triangles touching the airfoil; histogram in %% per 0.1 bin;\n"
+              "min_angle = their smallest interior angle (deg)\n\n",
               mesh.c_str(), net.number_of_vertices(), net.number_of_elements(), demo::number_of_moving(roles),
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), options.steps,
               options.amplitude, options.solver_description());

@@ -165,7 +165,7 @@ int main(int argc, char** argv)
   std::printf("pitch about the z axis through (0.5, 0), alpha = alpha_m sin(pi i / 2n), n = %zu, alpha_m = +/-%g deg\n"
               "solver: %s\n"
               "R = equiangle skewness (Eq. 13, six dihedral angles) of the tetrahedra touching the wing; "
-              "histogram in %% per 0.1 bin\n\n",
+              "histogram in %% per 0.1 bin;\nmin_angle = their smallest dihedral angle (deg)\n\n",
               options.steps, options.amplitude, options.solver_description());
 
   const demo::Pitch_demo<3> runs{

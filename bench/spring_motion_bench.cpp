@@ -16,6 +16,8 @@
 // iterations against the relaxation factor on the 2D cases' systems).
 // Progress goes to stderr, the tables to stdout.
 #include <spring_motion/spring_motion.h>
+#include <spring_motion/stiffness/Ball_vertex_stiffness.h>
+#include <spring_motion/stiffness/With_ball_vertex.h>
 #include <naca0012/Naca0012_mesh_2.h>
 #if __has_include(<naca0012/Naca0012_wing_mesh_3.h>)
 #include <naca0012/Naca0012_wing_mesh_3.h>
@@ -749,8 +751,9 @@ void print_table(const std::vector<Row>& rows)
 }
 
 // Block (element-model) against scalar (edge-model) systems on one mesh, one
-// thread: the 2D torsional model and the grid-scaled model through the same
-// solver (ordering, block Gauss-Seidel, multigrid on D x D blocks).
+// thread: the 2D torsional and ball-vertex models (alone and added to the
+// grid-scaled springs) and the grid-scaled model through the same solver
+// (ordering, block Gauss-Seidel, multigrid on D x D blocks).
 struct Block_row
 {
   std::string model;
@@ -801,9 +804,10 @@ void print_block_rows(const std::string& mesh, const std::vector<Block_row>& row
   for(const auto& r : rows)
     std::printf("%-28s %6zu %8.1f %10.3f %10.3f %12.4f %9.2e\n", r.model.c_str(), r.steps, r.iterations, r.solve_ms,
                 r.stiffness_ms, r.ms_per_iteration, r.error);
-  if(rows.size() == 2)
-    std::printf("block / scalar: %.2fx the iterations per step, %.2fx the time per iteration\n",
-                rows[1].iterations / rows[0].iterations, rows[1].ms_per_iteration / rows[0].ms_per_iteration);
+  for(std::size_t k = 1; k < rows.size(); ++k)
+    std::printf("%s / %s: %.2fx the iterations per step, %.2fx the time per iteration\n", rows[k].model.c_str(),
+                rows[0].model.c_str(), rows[k].iterations / rows[0].iterations,
+                rows[k].ms_per_iteration / rows[0].ms_per_iteration);
 }
 
 struct Target
@@ -984,6 +988,9 @@ int main(int argc, char** argv)
     rows.push_back(measure(c, bandwidth));
     block_rows.push_back(block_row(c, "grid-scaled (scalar)", sm::Grid_scaled_stiffness{}));
     block_rows.push_back(block_row(c, "torsional (2x2 blocks)", sm::Torsional_stiffness{}));
+    block_rows.push_back(block_row(c, "ball_vertex (2x2 blocks)", sm::Ball_vertex_stiffness{}));
+    block_rows.push_back(block_row(c, "ball_vertex_p2 (2x2 blocks)", sm::Ball_vertex_stiffness{2.0}));
+    block_rows.push_back(block_row(c, "grid_scaled+ball_vertex", sm::With_ball_vertex<sm::Grid_scaled_stiffness>{}));
   }
   if(wanted(setup, "naca_fine")) {
     progress("building the fine NACA0012 mesh");

@@ -16,8 +16,6 @@
 // iterations against the relaxation factor on the 2D cases' systems).
 // Progress goes to stderr, the tables to stdout.
 #include <spring_motion/spring_motion.h>
-#include <spring_motion/stiffness/Ball_vertex_stiffness.h>
-#include <spring_motion/stiffness/With_ball_vertex.h>
 #include <naca0012/Naca0012_mesh_2.h>
 #if __has_include(<naca0012/Naca0012_wing_mesh_3.h>)
 #include <naca0012/Naca0012_wing_mesh_3.h>

@@ -15,10 +15,12 @@
 #include <spring_motion/mesh_traits/Triangulation_3.h>
 #include <spring_motion/motion/Pitch_motion.h>
 #include <spring_motion/skewness.h>
+#include <spring_motion/stiffness/Ball_vertex_stiffness.h>
 #include <spring_motion/stiffness/Blom_semi_torsional_stiffness.h>
 #include <spring_motion/stiffness/Grid_scaled_stiffness.h>
 #include <spring_motion/stiffness/Lineal_stiffness.h>
 #include <spring_motion/stiffness/Torsional_stiffness.h>
+#include <spring_motion/stiffness/With_ball_vertex.h>
 #include <spring_motion/stiffness/Zeng_Ethier_semi_torsional_stiffness.h>
 #include <spring_motion/validity.h>
 

@@ -28,6 +28,23 @@ std::map<std::pair<double, double>, std::array<double, 2>> positions_by_initial_
   return m;
 }
 
+// The annulus of make_annulus() with its inner circle moving, the outer fixed.
+struct Annulus
+{
+  Spring_network<2> net;
+  std::vector<Vertex_role> roles;
+};
+Annulus annulus_turning_inside()
+{
+  CDT cdt;
+  make_annulus(cdt);
+  auto net = extract_spring_network(cdt).network;
+  auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
+                              return std::hypot(p[0], p[1]) < 1.0;
+                            }));
+  return {std::move(net), std::move(roles)};
+}
+
 } // namespace
 
 TEST_CASE("deform: a rigid translation of the whole boundary translates every vertex", "[deform]")
@@ -283,12 +300,9 @@ struct Counting_motion
 
 TEST_CASE("deform: the motion is evaluated once per moving vertex and attempt", "[deform]")
 {
-  CDT cdt;
-  make_annulus(cdt);
-  const auto net = extract_spring_network(cdt).network;
-  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
-                                    return std::hypot(p[0], p[1]) < 1.0;
-                                  }));
+  const Annulus annulus = annulus_turning_inside();
+  const auto& net = annulus.net;
+  const auto& roles = annulus.roles;
   std::size_t calls = 0;
   Network_deformer<2> d(net, roles);
   Deform_options options;
@@ -341,12 +355,9 @@ TEST_CASE("deform: a second run with other solver options rebuilds the solver st
 
 TEST_CASE("deform: move() step by step reproduces run() with the same schedule", "[deform][move]")
 {
-  CDT cdt;
-  make_annulus(cdt);
-  const auto net = extract_spring_network(cdt).network;
-  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
-                                    return std::hypot(p[0], p[1]) < 1.0;
-                                  }));
+  const Annulus annulus = annulus_turning_inside();
+  const auto& net = annulus.net;
+  const auto& roles = annulus.roles;
   const Pitch_motion<2> pitch(30, {0.1, 0});
   Deform_options options;
   options.number_of_steps = 6;
@@ -385,12 +396,9 @@ TEST_CASE("deform: move() step by step reproduces run() with the same schedule",
 
 TEST_CASE("deform: an invalid move() is rolled back and reported", "[deform][move]")
 {
-  CDT cdt;
-  make_annulus(cdt);
-  const auto net = extract_spring_network(cdt).network;
-  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
-                                    return std::hypot(p[0], p[1]) < 1.0;
-                                  }));
+  const Annulus annulus = annulus_turning_inside();
+  const auto& net = annulus.net;
+  const auto& roles = annulus.roles;
   Network_deformer<2> d(net, roles);
   auto displacement = [&](double degrees) {
     const Pitch_motion<2> turn(degrees, {0, 0});
@@ -419,12 +427,9 @@ TEST_CASE("deform: an invalid move() is rolled back and reported", "[deform][mov
 
 TEST_CASE("deform: the report's smallest angles are those of the final positions", "[deform][angles]")
 {
-  CDT cdt;
-  make_annulus(cdt);
-  const auto net = extract_spring_network(cdt).network;
-  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
-                                    return std::hypot(p[0], p[1]) < 1.0;
-                                  }));
+  const Annulus annulus = annulus_turning_inside();
+  const auto& net = annulus.net;
+  const auto& roles = annulus.roles;
   Network_deformer<2> d(net, roles);
   Deform_options options;
   options.number_of_steps = 6;

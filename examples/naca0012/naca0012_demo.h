@@ -123,9 +123,8 @@ sm::Skewness_histogram print_original(const Pitch_demo<D>& d)
               "first_invalid", "last_deg", "R_max", "R histogram 0..1 (%)", "min_size", "min_angle", "sweeps",
               "ms/step");
   sm::Network_deformer<D> original(d.net, d.roles);
-  const auto r = sm::element_skewness(d.net, original.positions());
   std::vector<double> angle;
-  sm::element_skewness(d.net, original.positions(), 0, &angle);
+  const auto r = sm::element_skewness(d.net, original.positions(), 0, &angle);
   const auto h = sm::skewness_histogram(r, [&](std::size_t t) { return original.touches_moving(t); });
   double min_angle = 180;
   for(std::size_t t = 0; t < angle.size(); ++t)

@@ -303,21 +303,13 @@ template <int D>
 std::vector<Vertex_role> command_line_roles(const Spring_network<D>& net, const std::vector<int>& moving,
                                             const std::optional<std::vector<int>>& fixed)
 {
-  std::vector<Vertex_role> roles(net.number_of_vertices(), Vertex_role::free);
-  for(Index i = 0; i < net.number_of_vertices(); ++i) {
-    const int* lb = net.vertex_labels.data() + net.vertex_label_offsets[i];
-    const int* le = net.vertex_labels.data() + net.vertex_label_offsets[i + 1];
-    const auto has_any = [&](const std::vector<int>& labels) {
-      return std::any_of(labels.begin(), labels.end(), [&](int l) { return std::find(lb, le, l) != le; });
-    };
-    if(!net.on_boundary[i])
-      continue;
-    if(has_any(moving))
-      roles[i] = Vertex_role::moving;
-    else if(!fixed || has_any(*fixed))
-      roles[i] = Vertex_role::fixed;
+  Boundary_label_roles rules;
+  rules.moving = moving;
+  if(fixed) {
+    rules.fixed = *fixed;
+    rules.fixed_given = true;
   }
-  return roles;
+  return assign_roles(net, rules);
 }
 
 /// The checks of Network_deformer's constructor, with the command line's

@@ -53,6 +53,7 @@ public:
     for(Index i = 0; i < n; ++i) {
       if(!used[i])
         continue; // a vertex no element uses takes no part
+      SPRING_MOTION_VERTEX_CHECK(roles_[i] != Vertex_role::sliding, i, "sliding vertices are not supported yet");
       if(roles_[i] == Vertex_role::free)
         free_.push_back(i);
       else

@@ -12,8 +12,11 @@
 namespace spring_motion {
 
 /// What happens to a vertex: the motion places `moving` vertices, `fixed`
-/// ones stay at their initial point, `free` ones follow the springs.
-enum class Vertex_role : unsigned char { free, fixed, moving };
+/// ones stay at their initial point, `free` ones follow the springs, and
+/// `sliding` ones follow the springs within the plane (2D: the line) of every
+/// labelled boundary part they lie on: a symmetry plane (docs/method.md,
+/// "Vertex roles").
+enum class Vertex_role : unsigned char { free, fixed, moving, sliding };
 
 /// What a role function sees of a vertex.
 template <int D>
@@ -64,6 +67,42 @@ struct Moving_boundary_labels
   }
 };
 
+/// The command line's rules (`--moving`, `--fixed`, `--sliding`), for
+/// labelled boundary parts: a boundary vertex on a `moving` part moves; else
+/// it is fixed if it lies on a `fixed` part (when `fixed` is not given: on
+/// any part that is not sliding, or on no labelled part); else it slides if
+/// it lies on a `sliding` part; else (only when `fixed` is given) it is
+/// free. Interior vertices are free. So a vertex on a sliding and a moving
+/// part moves, on a sliding and a fixed part it stays.
+struct Boundary_label_roles
+{
+  std::vector<int> moving;
+  std::vector<int> sliding;
+  std::vector<int> fixed;
+  bool fixed_given = false;  ///< false: every part that neither moves nor slides is fixed
+
+  template <int D>
+  Vertex_role operator()(const Vertex_info<D>& v) const
+  {
+    if(!v.on_boundary)
+      return Vertex_role::free;
+    const auto has_any = [&](const std::vector<int>& labels) {
+      return std::any_of(labels.begin(), labels.end(), [&](int l) { return v.has_label(l); });
+    };
+    if(has_any(moving))
+      return Vertex_role::moving;
+    const bool on_other_part =
+      v.labels_begin == v.labels_end ||
+      std::any_of(v.labels_begin, v.labels_end,
+                  [&](int l) { return std::find(sliding.begin(), sliding.end(), l) == sliding.end(); });
+    if(fixed_given ? has_any(fixed) : on_other_part)
+      return Vertex_role::fixed;
+    if(has_any(sliding))
+      return Vertex_role::sliding;
+    return Vertex_role::free;
+  }
+};
+
 /// Every boundary vertex moves (for instance a rigid translation of the
 /// whole domain).
 struct All_boundary_moving
@@ -88,8 +127,8 @@ std::vector<Vertex_role> assign_roles(const Spring_network<D>& net, const Role_f
   return roles;
 }
 
-/// The free vertices that no path of springs joins to a moving or fixed
-/// vertex, in increasing order: their displacement is undetermined (the
+/// The free (or sliding) vertices that no path of springs joins to a moving
+/// or fixed vertex, in increasing order: their displacement is undetermined (the
 /// system is singular), so a well-posed problem has none. Vertices that no
 /// element uses take no part and are never listed.
 template <int D>
@@ -102,7 +141,7 @@ std::vector<Index> undetermined_vertices(const Spring_network<D>& net, const std
       used[v] = 1;
   std::deque<Index> queue;
   for(Index i = 0; i < n; ++i)
-    if(used[i] && roles[i] != Vertex_role::free) {
+    if(used[i] && (roles[i] == Vertex_role::moving || roles[i] == Vertex_role::fixed)) {
       reached[i] = 1;
       queue.push_back(i);
     }

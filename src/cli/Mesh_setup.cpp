@@ -276,26 +276,13 @@ std::vector<int> resolve_labels(const Mesh_setup<D>& setup, const std::string& o
 }
 
 template <int D>
-std::vector<Vertex_role> assign_command_line_roles(const Mesh_setup<D>& setup, const std::vector<int>& moving,
-                                                   const std::vector<int>& fixed, bool fixed_given,
+std::vector<Vertex_role> assign_command_line_roles(const Mesh_setup<D>& setup, const Boundary_label_roles& rules,
                                                    const std::vector<char>& prescribed)
 {
-  const auto& net = setup.network;
-  std::vector<Vertex_role> roles(net.number_of_vertices(), Vertex_role::free);
-  for(Index i = 0; i < net.number_of_vertices(); ++i) {
-    const int* lb = net.vertex_labels.data() + net.vertex_label_offsets[i];
-    const int* le = net.vertex_labels.data() + net.vertex_label_offsets[i + 1];
-    const auto has_any = [&](const std::vector<int>& labels) {
-      for(int l : labels)
-        if(std::find(lb, le, l) != le)
-          return true;
-      return false;
-    };
-    if((!prescribed.empty() && prescribed[i]) || (net.on_boundary[i] && has_any(moving)))
+  std::vector<Vertex_role> roles = assign_roles(setup.network, rules);
+  for(Index i = 0; i < Index(prescribed.size()); ++i)
+    if(prescribed[i])
       roles[i] = Vertex_role::moving;
-    else if(net.on_boundary[i] && (!fixed_given || has_any(fixed)))
-      roles[i] = Vertex_role::fixed;
-  }
   return roles;
 }
 
@@ -304,8 +291,7 @@ std::vector<Vertex_role> assign_command_line_roles(const Mesh_setup<D>& setup, c
   template std::string describe_problems<D>(const Mesh_setup<D>&, std::size_t*);                            \
   template std::string describe_boundary_labels<D>(const Mesh_setup<D>&);                                   \
   template std::vector<int> resolve_labels<D>(const Mesh_setup<D>&, const std::string&, const std::string&); \
-  template std::vector<Vertex_role> assign_command_line_roles<D>(const Mesh_setup<D>&, const std::vector<int>&, \
-                                                                 const std::vector<int>&, bool,             \
+  template std::vector<Vertex_role> assign_command_line_roles<D>(const Mesh_setup<D>&, const Boundary_label_roles&, \
                                                                  const std::vector<char>&);                 \
   template Input_error file_error<D>(const Mesh_setup<D>&, const Error&);
 SPRING_MOTION_CLI_INSTANTIATE(2)

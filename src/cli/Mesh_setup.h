@@ -91,13 +91,11 @@ std::vector<int> resolve_labels(const Mesh_setup<D>& setup, const std::string& o
 template <int D>
 std::string describe_boundary_labels(const Mesh_setup<D>& setup);
 
-/// Vertex roles of the command line (see `deform --help`): a boundary vertex
-/// on a moving part moves (also when it lies on a fixed part), a vertex in
-/// `prescribed` moves; without `fixed_given` every other boundary vertex is
-/// fixed; with it only those on a fixed part, the rest of the boundary is free.
+/// Vertex roles of the command line (see `deform --help`): the library's
+/// rules for labelled parts (Boundary_label_roles), and a vertex in
+/// `prescribed` (a displacement file's) moves.
 template <int D>
-std::vector<Vertex_role> assign_command_line_roles(const Mesh_setup<D>& setup, const std::vector<int>& moving,
-                                                   const std::vector<int>& fixed, bool fixed_given,
+std::vector<Vertex_role> assign_command_line_roles(const Mesh_setup<D>& setup, const Boundary_label_roles& rules,
                                                    const std::vector<char>& prescribed);
 
 /// "triangle" / "tetrahedron", "edge" / "triangle", "area" / "volume"

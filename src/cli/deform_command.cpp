@@ -305,7 +305,12 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
   check_model(s.model, D);
   Mesh_setup<D> setup = make_mesh_setup<D>(s.mesh_path, file, true);
   const std::vector<int> moving = s.moving ? resolve_labels(setup, "moving", *s.moving) : std::vector<int>{};
-  const std::vector<int> fixed = s.fixed ? resolve_labels(setup, "fixed", *s.fixed) : std::vector<int>{};
+  Boundary_label_roles rules;
+  rules.moving = moving;
+  if(s.fixed) {
+    rules.fixed = resolve_labels(setup, "fixed", *s.fixed);
+    rules.fixed_given = true;
+  }
   // The motions' checks that need the dimension.
   std::optional<Pitch_motion<D>> pitch;
   std::optional<Translation_motion<D>> translation;
@@ -326,7 +331,7 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
     translation->displacement = to_point<D>(s.translation, "translate");
   }
   // Roles before reading a displacement file, which must then cover the moving set.
-  auto roles = assign_command_line_roles(setup, moving, fixed, s.fixed.has_value(), prescribed);
+  auto roles = assign_command_line_roles(setup, rules, prescribed);
   if(s.motion == Deform_settings::Motion_kind::displacement) {
     const auto df = read_displacement_file<D>(s.displacement_path, file.vertex_ids);
     displacement.emplace();
@@ -353,7 +358,7 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
           throw Input_error(df.path, 0, "no line for moving vertex " + std::to_string(setup.vertex_number(v)) +
                                             ": expected a displacement for every vertex of --moving " + *s.moving);
     } else
-      roles = assign_command_line_roles(setup, moving, fixed, s.fixed.has_value(), prescribed);
+      roles = assign_command_line_roles(setup, rules, prescribed);
   }
   try { // the library checks the roles (Network_deformer) and the input mesh once more
     if(pitch)

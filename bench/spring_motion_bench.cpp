@@ -831,30 +831,45 @@ void print_targets(const std::vector<Row>& rows, bool quick)
     return t;
   };
   char buf[160];
-  if(const Row* r = find("NACA0012 2D coarse")) {
-    const double t = best(*r);
-    const bool ok_err = r->cmp.error <= 1e-6;
-    std::snprintf(buf, sizeof buf, "%.3f s, err %.1e", t, r->cmp.error);
-    char m[64];
-    std::snprintf(m, sizeof m, "%.2fx the target", t / 0.3);
-    if(!r->runs[0].completed)
-      std::snprintf(m, sizeof m, "%.2fx the target, run NOT completed", t / 0.3);
-    ts.push_back({"2D paper case, grid-scaled, " + std::to_string(r->steps) + " steps to 45 deg, err <= 1e-6",
-                  "<= 0.3 s", buf, t <= 0.3 && ok_err && r->runs[0].completed, m});
-  }
-  if(const Row* r = find("wing")) {
-    const double t = best(*r);
-    std::snprintf(buf, sizeof buf, "%.2f s, err %.1e", t, r->cmp.error);
-    char m[96];
-    std::snprintf(m, sizeof m, "%.2fx the target", t / 15);
-    if(!r->runs[0].completed) { // what the whole run would take at the same cost per step
-      const double whole = t * double(r->steps) / double(std::max<std::size_t>(1, r->runs[0].steps_run));
+  // the run's time on the benchmark's own clock (reading, writing and process
+  // start-up aside: the command line adds those, see docs/performance.md)
+  auto run_target = [&](const Row& r, const std::string& what, double bound) {
+    const double t = best(r);
+    std::snprintf(buf, sizeof buf, "%.3f s, err %.1e", t, r.cmp.error);
+    char m[128];
+    std::snprintf(m, sizeof m, "%.2fx the target", t / bound);
+    if(!r.runs[0].completed) { // what the whole run would take at the same cost per step
+      const double whole = t * double(r.steps) / double(std::max<std::size_t>(1, r.runs[0].steps_run));
       std::snprintf(m, sizeof m, "run NOT completed (stopped at step %zu); %zu steps pro rata %.2f s",
-                    r->runs[0].steps_run, r->steps, whole);
+                    r.runs[0].steps_run, r.steps, whole);
     }
-    ts.push_back({"3D wing, " + std::to_string(r->steps) + " steps to 30 deg", "<= 15 s", buf,
-                  t <= 15 && r->cmp.error <= 1e-6 && r->runs[0].completed, m});
+    char b[32];
+    std::snprintf(b, sizeof b, "<= %g s", bound);
+    ts.push_back({what, b, buf, t <= bound && r.cmp.error <= 1e-6 && r.runs[0].completed, m});
+  };
+  // the median step's stiffness phase, best thread count
+  auto stiffness_ms = [](const Row& r) {
+    double t = 1e300;
+    for(const auto& s : r.runs)
+      t = std::min(t, s.stiffness);
+    return 1e3 * t;
+  };
+  auto stiffness_target = [&](const Row& r, double bound_ms) {
+    const double t = stiffness_ms(r);
+    std::snprintf(buf, sizeof buf, "%.1f ms (%s)", t, r.name.c_str());
+    char m[64], b[32];
+    std::snprintf(m, sizeof m, "%.2fx the target", t / bound_ms);
+    std::snprintf(b, sizeof b, "<= %g ms", bound_ms);
+    ts.push_back({"stiffness per step, " + r.name, b, buf, t <= bound_ms, m});
+  };
+  if(const Row* r = find("NACA0012 2D coarse"))
+    run_target(*r, "2D paper case, grid-scaled, " + std::to_string(r->steps) + " steps to 45 deg", 0.1);
+  if(const Row* r = find("wing")) {
+    run_target(*r, "3D wing, grid-scaled, " + std::to_string(r->steps) + " steps to 30 deg", 4);
+    stiffness_target(*r, 15);
   }
+  if(const Row* r = find("box"))
+    stiffness_target(*r, 150);
   {
     const Row* a = find("wing");
     std::string from = "wing";
@@ -877,8 +892,8 @@ void print_targets(const std::vector<Row>& rows, bool quick)
       const double p = std::log(per_step(*b) / per_step(*a)) / std::log(double(b->nodes) / double(a->nodes));
       std::snprintf(buf, sizeof buf, "n^%.2f (%s -> box, median step)", p, from.c_str());
       char m[64];
-      std::snprintf(m, sizeof m, "exponent %+.2f vs 1.15", p - 1.15);
-      ts.push_back({"cost per step scaling", "<= n^1.15", buf, p <= 1.15, m});
+      std::snprintf(m, sizeof m, "exponent %+.2f vs 1.0", p - 1.0);
+      ts.push_back({"cost per step scaling", "<= n^1.0", buf, p <= 1.0, m});
     }
   }
   {
@@ -889,8 +904,8 @@ void print_targets(const std::vector<Row>& rows, bool quick)
       const auto& w = r->sweeps[0];
       std::snprintf(buf, sizeof buf, "%.2fx bound (%s, 1 thr)", w.seconds / w.bound, r->name.c_str());
       char m[64];
-      std::snprintf(m, sizeof m, "%.2fx vs 2x", w.seconds / w.bound);
-      ts.push_back({"one SOR sweep vs traffic bound", "<= 2x", buf, w.seconds / w.bound <= 2, m});
+      std::snprintf(m, sizeof m, "%.2fx vs 1.5x", w.seconds / w.bound);
+      ts.push_back({"one SOR sweep vs traffic bound", "<= 1.5x", buf, w.seconds / w.bound <= 1.5, m});
     }
   }
   {
@@ -916,6 +931,8 @@ void print_targets(const std::vector<Row>& rows, bool quick)
   for(const auto& t : ts)
     std::printf("%-58s %-14s %-44s %-5s %s\n", t.what.c_str(), t.target.c_str(), t.measured.c_str(),
                 t.met ? "yes" : "NO", t.margin.c_str());
+  std::printf("Not measured here: the whole command-line process (docs/performance.md), peak memory per\n"
+              "tetrahedron, and the busy-machine ratio (two CPU-bound processes beside the run).\n");
 }
 
 Setup parse(int argc, char** argv)

@@ -48,6 +48,9 @@ def validate(path):
     for k in ("dimension", "vertices", "elements", "moving_vertices", "fixed_vertices"):
         if not isinstance(m.get(k), int):
             fail(path, f"mesh.{k} should be an integer")
+    # written since sliding boundaries exist; older reports lack it (0)
+    if not isinstance(m.get("sliding_vertices", 0), int):
+        fail(path, "mesh.sliding_vertices should be an integer")
     if m["dimension"] not in (2, 3):
         fail(path, "mesh.dimension should be 2 or 3")
     if not isinstance(r["model"].get("name"), str) or not isinstance(r["model"].get("parameters"), dict):

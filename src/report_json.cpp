@@ -115,7 +115,8 @@ void write_report_json(const Deform_report& r, std::ostream& out)
                    {"vertices", r.vertices},
                    {"elements", r.elements},
                    {"moving_vertices", r.moving_vertices},
-                   {"fixed_vertices", r.fixed_vertices}};
+                   {"fixed_vertices", r.fixed_vertices},
+                   {"sliding_vertices", r.sliding_vertices}};
   Json parameters = Json::object();
   for(const auto& [name, value] : r.model.parameters)
     parameters[name] = number(value);

@@ -8,6 +8,7 @@
 #include <spring_motion/mesh_traits/Triangulation_2.h>
 #include <spring_motion/mesh_traits/Triangulation_3.h>
 #include <spring_motion/motion/Pitch_motion.h>
+#include <spring_motion/stiffness/Grid_scaled_stiffness.h>
 #include <spring_motion/stiffness/Lineal_stiffness.h>
 
 #include "mesh_3_ball.h"
@@ -23,6 +24,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Regular_triangulation_2.h>
 #include <CGAL/Surface_mesh.h>
+
+#include <boost/property_map/property_map.hpp>
 
 #include <algorithm>
 #include <array>
@@ -308,4 +311,102 @@ TEMPLATE_TEST_CASE("deform over mesh types: fixed vertices keep their points bit
     }
   CHECK(fixed_checked == report.fixed_vertices);
   CHECK(moved > 0);
+}
+
+TEMPLATE_TEST_CASE("deform over mesh types: roles from a property map move the mesh as the same roles from a predicate",
+                   "[deform][mesh_traits][roles]", Delaunay_2_fixture, Mesh_2_fixture, Surface_mesh_2_fixture,
+                   Delaunay_3_fixture, Mesh_3_fixture)
+{
+  constexpr int D = dimension_of<TestType>;
+  using Mesh = typename TestType::Mesh;
+  using Traits = Simplicial_mesh_traits<Mesh>;
+  using Vh = typename Traits::Vertex_handle;
+  auto by_predicate = TestType::make();
+  auto by_map = TestType::make();
+  auto by_bool_maps = TestType::make();
+  const auto extracted = extract_spring_network<Mesh, Traits>(by_map);
+  const auto& net = extracted.network;
+  double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
+  for(const auto& p : net.points) {
+    x_min = std::min(x_min, p[0]);
+    x_max = std::max(x_max, p[0]);
+  }
+  const double x_cut = x_min + 0.3 * (x_max - x_min);
+  auto left = [x_cut](const std::array<double, D>& p) { return p[0] < x_cut; };
+  // the same roles as the predicate's, keyed by the mesh's vertex handles
+  std::map<Vh, Vertex_role> role_of;
+  std::map<Vh, bool> moving, constrained;
+  const auto roles = assign_roles(net, moving_boundary_where(left));
+  for(std::size_t k = 0; k < extracted.handles.size(); ++k) {
+    role_of[extracted.handles[k]] = roles[k];
+    moving[extracted.handles[k]] = roles[k] == Vertex_role::moving;
+    constrained[extracted.handles[k]] = roles[k] != Vertex_role::free;
+  }
+  std::array<double, D> d{};
+  d[1] = 1e-3 * (x_max - x_min);
+  Deform_options options;
+  options.number_of_steps = 2;
+  const auto r0 = deform(by_predicate, moving_boundary_where(left), Translation_motion<D>{d}, Lineal_stiffness{}, options);
+  const auto r1 = deform(by_map, vertex_role_map(boost::associative_property_map<std::map<Vh, Vertex_role>>(role_of)),
+                         Translation_motion<D>{d}, Lineal_stiffness{}, options);
+  // the maps of the third mesh hold the handles of the second: copy them over by position in the traits' order
+  std::map<Vh, bool> moving3, constrained3;
+  {
+    const auto e3 = extract_spring_network<Mesh, Traits>(by_bool_maps);
+    REQUIRE(e3.handles.size() == extracted.handles.size());
+    for(std::size_t k = 0; k < e3.handles.size(); ++k) {
+      moving3[e3.handles[k]] = moving[extracted.handles[k]];
+      constrained3[e3.handles[k]] = constrained[extracted.handles[k]];
+    }
+  }
+  const auto r2 = deform(by_bool_maps,
+                         constrained_vertex_maps(boost::associative_property_map<std::map<Vh, bool>>(moving3),
+                                                 boost::associative_property_map<std::map<Vh, bool>>(constrained3)),
+                         Translation_motion<D>{d}, Lineal_stiffness{}, options);
+  REQUIRE(r0.completed);
+  REQUIRE(r0.moving_vertices > 0);
+  CHECK(r1.moving_vertices == r0.moving_vertices);
+  CHECK(r1.fixed_vertices == r0.fixed_vertices);
+  CHECK(r2.moving_vertices == r0.moving_vertices);
+  CHECK(r2.fixed_vertices == r0.fixed_vertices);
+  // bit for bit: the same system, solved the same way
+  const auto sorted = [](const auto& snap) {
+    std::vector<Raw> v;
+    for(const auto& [h, p] : snap)
+      v.push_back(p);
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  const auto va = sorted(snapshot<TestType>(by_predicate));
+  CHECK(va == sorted(snapshot<TestType>(by_map)));
+  CHECK(va == sorted(snapshot<TestType>(by_bool_maps)));
+  CHECK(va != sorted(snapshot<TestType>(TestType::make()))); // the mesh did move
+}
+
+TEST_CASE("deform: roles from a Surface_mesh vertex property", "[deform][mesh_traits][roles]")
+{
+  using Mesh = Surface_mesh_2_fixture::Mesh;
+  Mesh a = Surface_mesh_2_fixture::make(), b = a;
+  // the hole (the boundary near the centre) moves, the outer boundary is fixed
+  auto role = b.add_property_map<Mesh::Vertex_index, Vertex_role>("v:role", Vertex_role::free).first;
+  const auto near_centre = [](const std::array<double, 2>& p) { return std::hypot(p[0], p[1]) < 1.0; };
+  for(auto v : b.vertices()) {
+    if(!b.is_border(v))
+      continue;
+    role[v] = near_centre({b.point(v).x(), b.point(v).y()}) ? Vertex_role::moving : Vertex_role::fixed;
+  }
+  Deform_options options;
+  options.number_of_steps = 3;
+  const Translation_motion<2> shift{{0.05, 0.02}};
+  const auto r0 = deform(a, moving_boundary_where(near_centre), shift, Grid_scaled_stiffness{}, options);
+  const auto r1 = deform(b, vertex_role_map(role), shift, Grid_scaled_stiffness{}, options);
+  REQUIRE(r0.completed);
+  REQUIRE(r1.moving_vertices == r0.moving_vertices);
+  REQUIRE(r1.moving_vertices > 0);
+  std::size_t moved = 0;
+  for(auto v : a.vertices()) {
+    CHECK(a.point(v) == b.point(v));
+    moved += a.point(v) != Surface_mesh_2_fixture::make().point(v);
+  }
+  CHECK(moved > r0.moving_vertices); // the interior followed
 }

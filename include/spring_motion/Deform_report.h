@@ -60,7 +60,7 @@ struct Deform_report
 {
   // the run's setting
   int dimension = 2;
-  std::size_t vertices = 0, elements = 0, moving_vertices = 0, fixed_vertices = 0;
+  std::size_t vertices = 0, elements = 0, moving_vertices = 0, fixed_vertices = 0, sliding_vertices = 0;
   Model_description model;
   Motion_description motion;
   std::size_t number_of_steps = 0;

@@ -10,6 +10,7 @@
 #include <spring_motion/Step_system_view.h>
 #include <spring_motion/Vertex_role.h>
 #include <spring_motion/internal/geometry/angles.h>
+#include <spring_motion/internal/geometry/sliding_planes.h>
 #include <spring_motion/internal/solver/assemble.h>
 #include <spring_motion/internal/solver/free_system.h>
 #include <spring_motion/internal/solver/threads.h>
@@ -50,15 +51,23 @@ public:
     for(const auto& e : net_.elements)
       for(Index v : e)
         used[v] = 1;
+    sliding_ = internal::sliding_set(net_, roles_);
+    std::vector<char> pinned(n, 0);
+    for(Index i : sliding_.pinned)
+      pinned[i] = 1;
     for(Index i = 0; i < n; ++i) {
       if(!used[i])
         continue; // a vertex no element uses takes no part
-      SPRING_MOTION_VERTEX_CHECK(roles_[i] != Vertex_role::sliding, i, "sliding vertices are not supported yet");
-      if(roles_[i] == Vertex_role::free)
+      if(roles_[i] == Vertex_role::free || (roles_[i] == Vertex_role::sliding && !pinned[i]))
         free_.push_back(i);
       else
         (roles_[i] == Vertex_role::moving ? moving_ : fixed_).push_back(i);
     }
+    for(const auto& sv : sliding_.vertices)
+      if(used[sv.vertex]) {
+        sliding_vertices_.push_back(sv.vertex);
+        sliding_projectors_.push_back(sv.projector);
+      }
     SPRING_MOTION_CHECK(!moving_.empty(), "no vertex is moving: the set of moving vertices is empty");
     const std::vector<Index> unreached = undetermined_vertices(net_, roles_);
     SPRING_MOTION_VERTEX_CHECK(unreached.empty(), unreached.empty() ? 0 : unreached.front(),
@@ -85,7 +94,10 @@ public:
   /// elements with at least one moving vertex
   bool touches_moving(std::size_t element) const { return touches_moving_[element] != 0; }
   std::size_t number_of_moving_vertices() const { return moving_.size(); }
+  /// fixed vertices, sliding ones whose planes pin them included
   std::size_t number_of_fixed_vertices() const { return fixed_.size(); }
+  /// vertices that slide in the planes of their parts
+  std::size_t number_of_sliding_vertices() const { return sliding_vertices_.size(); }
   double fraction() const { return t_; }
 
   /// Called, when set, with each step's linear system just before it is
@@ -123,6 +135,7 @@ public:
     rep.elements = net_.number_of_elements();
     rep.moving_vertices = moving_.size();
     rep.fixed_vertices = fixed_.size();
+    rep.sliding_vertices = sliding_vertices_.size();
     rep.model = internal::describe_model(model, D);
     rep.motion = internal::describe_motion(motion);
     rep.number_of_steps = options.number_of_steps;
@@ -392,9 +405,14 @@ private:
         delta_[i][c] = net_.points[i][c] - positions_[i][c];
     Stiffness_context ctx{D, net_.longest_initial_edge};
     internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, angle_scratch_, threads);
-    if(solver_.needs_build(net_, free_, element_model, options.solver))
-      solver_.build(net_, free_, element_model, options.solver);
-    if constexpr(element_model)
+    // sliding vertices couple the coordinates: then every model runs as a
+    // block system (an edge model's k I blocks are its scalar system)
+    const bool block = element_model || !sliding_vertices_.empty();
+    if(solver_.needs_build(net_, free_, block, options.solver)) {
+      solver_.build(net_, free_, block, options.solver);
+      solver_.set_projectors(sliding_vertices_, sliding_projectors_);
+    }
+    if(block)
       internal::assemble_block_system(net_, positions_, model, stiffness_, solver_, threads);
     else
       solver_.load_scalar(net_, stiffness_, threads);
@@ -434,6 +452,8 @@ private:
       candidate_[moving_[k]] = moving_targets_[k];
     for(Index i : fixed_)
       candidate_[i] = net_.points[i];
+    for(const auto& sv : sliding_.vertices)
+      internal::snap_to_planes<D>(sv, net_.points[sv.vertex], candidate_[sv.vertex]);
     failed.inverted.clear();
     find_inverted_elements(net_, candidate_, record_, std::back_inserter(failed.inverted), threads);
     s.seconds_check += seconds_since(t0);
@@ -456,6 +476,11 @@ private:
   Spring_network<D> net_;
   std::vector<Vertex_role> roles_;
   std::vector<Index> free_, moving_, fixed_;
+  // sliding vertices: their planes, and (those some element uses) their
+  // projectors, in the form the solver takes
+  internal::Sliding_set<D> sliding_;
+  std::vector<Index> sliding_vertices_;
+  std::vector<std::array<double, D * D>> sliding_projectors_;
   std::vector<Point> positions_, increment_, previous_increment_;
   // the fraction intervals (h) and their midpoints (m) of the last two accepted increments
   struct History

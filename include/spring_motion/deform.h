@@ -10,6 +10,7 @@
 #include <spring_motion/Network_deformer.h>
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/Vertex_role.h>
+#include <spring_motion/Vertex_role_map.h>
 #include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
 
 namespace spring_motion {
@@ -19,8 +20,11 @@ namespace spring_motion {
 /// writes the final positions (the last valid state if a step inverted an
 /// element) back into the mesh.
 ///
-/// `role` maps each vertex (`Vertex_info<D>`) to free, fixed or moving, for
-/// instance `moving_boundary_where(pred)` or `Moving_boundary_labels{{1}}`;
+/// `role` maps each vertex (`Vertex_info<D>`) to its Vertex_role, for
+/// instance `moving_boundary_where(pred)`, `Moving_boundary_labels{{1}}` or
+/// `Boundary_label_roles`; or it reads the roles from property maps over the
+/// mesh's vertex handles: `vertex_role_map(map)`,
+/// `constrained_vertex_maps(moving, is_constrained)` (Vertex_role_map.h);
 /// `motion` is a `Motion`, `model` an edge or element stiffness model.
 ///
 /// After deform() a triangulation is a valid simplicial mesh but in general
@@ -32,7 +36,7 @@ Deform_report deform(Mesh& mesh, const Role_function& role, const Motion& motion
 {
   constexpr int D = Traits::dimension;
   auto extracted = extract_spring_network<Mesh, Traits>(mesh);
-  auto roles = assign_roles(extracted.network, role);
+  auto roles = assign_roles(extracted, role);
   Network_deformer<D> deformer(std::move(extracted.network), std::move(roles));
   Deform_report report = deformer.run(motion, model, options, visitor);
   extracted.write_back(mesh, deformer.positions());

@@ -7,6 +7,7 @@
 #include <spring_motion/Error.h>
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/Vertex_role.h>
+#include <spring_motion/Vertex_role_map.h>
 #include <spring_motion/deform.h>
 #include <spring_motion/mesh_traits/Indexed_mesh.h>
 #include <spring_motion/mesh_traits/Mesh_complex_3_in_triangulation_3.h>

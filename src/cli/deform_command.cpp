@@ -50,7 +50,7 @@ using Clock = std::chrono::steady_clock;
 struct Deform_settings
 {
   std::string mesh_path;
-  std::optional<std::string> moving, fixed;
+  std::optional<std::string> moving, fixed, sliding;
   enum class Motion_kind { pitch, translate, displacement } motion = Motion_kind::pitch;
   double pitch_deg = 0;
   std::vector<double> center, axis, translation;
@@ -66,7 +66,7 @@ struct Deform_settings
 const std::vector<Option_spec>& deform_options()
 {
   static const std::vector<Option_spec> specs{
-    {"moving"}, {"fixed"}, {"pitch"}, {"center"}, {"axis"}, {"translate"}, {"displacement"}, {"steps"},
+    {"moving"}, {"fixed"}, {"sliding"}, {"pitch"}, {"center"}, {"axis"}, {"translate"}, {"displacement"}, {"steps"},
     {"model"}, {"solver"}, {"omega"}, {"tolerance"}, {"max-iterations"}, {"max-substep-halvings"},
     {"threads"}, {"output", true, true}, {"every"}, {"report"}, {"quiet", false}, {"progress", false},
     {"help", false}};
@@ -83,6 +83,7 @@ Deform_settings parse_deform(const Arguments& a)
   s.mesh_path = a.operands()[0];
   s.moving = a.value("moving");
   s.fixed = a.value("fixed");
+  s.sliding = a.value("sliding");
 
   const int motions = int(a.has("pitch")) + int(a.has("translate")) + int(a.has("displacement"));
   if(motions != 1)
@@ -311,6 +312,8 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
     rules.fixed = resolve_labels(setup, "fixed", *s.fixed);
     rules.fixed_given = true;
   }
+  if(s.sliding)
+    rules.sliding = resolve_labels(setup, "sliding", *s.sliding);
   // The motions' checks that need the dimension.
   std::optional<Pitch_motion<D>> pitch;
   std::optional<Translation_motion<D>> translation;

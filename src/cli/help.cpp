@@ -70,7 +70,8 @@ See docs/cli.md.
 
 std::string deform_help()
 {
-  return R"(usage: spring-motion deform MESH --moving REF[,REF...] [--fixed REF[,REF...]] MOTION
+  return R"(usage: spring-motion deform MESH --moving REF[,REF...] [--fixed REF[,REF...]]
+                            [--sliding REF[,REF...]] MOTION
                             [--steps N] [--model NAME] [--solver cg|cg-sgs|sor|paper] [--omega W]
                             [--tolerance E] [--max-iterations N] [--max-substep-halvings K]
                             [--threads T] [--output OUT]... [--every K] [--report R.json]
@@ -92,6 +93,11 @@ boundary rules:
   - with --fixed, only vertices on those parts are fixed, and boundary vertices
     on neither kind of part are free (they follow the springs);
   - a vertex on both a moving and a fixed part MOVES (moving wins);
+  - vertices on a --sliding part (a plane in 3D, a straight line in 2D: a
+    symmetry plane) follow the springs within that plane and stay on it
+    exactly; on a sliding and a moving part a vertex moves, on a sliding and
+    a fixed part (or, without --fixed, any part that does not slide) it stays;
+    on two sliding parts it slides along their intersection;
   - interior vertices are free. Free vertices must be connected to a moving or
     fixed vertex, else the run stops with an error.
 

@@ -106,8 +106,42 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   }
 }
 
-/// Fills the block (element-model) system `fs`, built for `net`, with this
-/// step's values: the edge springs (k I per coordinate, or the truss
+// Element matrices in element order, one thread: two elements share
+// blocks, and a fixed order keeps the sums independent of the thread count.
+template <int D, class Model>
+void add_element_matrices(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
+                          const Model& model, Free_system<D>& fs)
+{
+  constexpr int DD = D * D;
+  constexpr int ND = (D + 1) * D;
+  double* blocks = fs.block_values();
+  const auto& elements = fs.assembled_elements();
+  const auto& dest = fs.element_destinations();
+  std::array<double, ND * ND> Ke;
+  for(std::size_t s = 0; s < elements.size(); ++s) {
+    const std::size_t t = elements[s];
+    Ke.fill(0.0);
+    model.add_element_matrix(element_points<D>(net.elements, x, t), Ke.data());
+    // all of it, rows of constrained vertices too: a model that breaks there
+    // breaks elsewhere on another step
+    for(double v : Ke)
+      SPRING_MOTION_ELEMENT_CHECK(std::isfinite(v), t, "element stiffness of element " << t << " is not finite");
+    for(int a = 0; a <= D; ++a)
+      for(int b = 0; b <= D; ++b) {
+        const Index to = dest[(s * (D + 1) + std::size_t(a)) * (D + 1) + std::size_t(b)];
+        if(to == Free_system<D>::none)
+          continue;
+        double* out = blocks + std::size_t(to) * DD;
+        for(int r = 0; r < D; ++r)
+          for(int c = 0; c < D; ++c) {
+            out[r * D + c] += Ke[std::size_t((a * D + r) * ND + (b * D + c))];
+          }
+      }
+  }
+}
+
+/// Fills the block system `fs` (element models, or any model with sliding
+/// vertices), built for `net`, with this step's values: the edge springs (k I per coordinate, or the truss
 /// k e e^T / |e|^2 along the edge, as `edge_spring_form(model)` says) row by
 /// row, then each element matrix scattered through the precomputed
 /// destinations; then the diagonal blocks are inverted (a singular one
@@ -117,7 +151,6 @@ void assemble_block_system(const Spring_network<D>& net, const std::vector<typen
                            const Model& model, const std::vector<double>& k, Free_system<D>& fs, int threads)
 {
   constexpr int DD = D * D;
-  constexpr int ND = (D + 1) * D;
   const bool along_edge = edge_spring_form(model) == Edge_spring_form::along_edge;
   const auto& order = fs.order();
   const auto& offsets = fs.row_offsets();
@@ -173,31 +206,9 @@ void assemble_block_system(const Spring_network<D>& net, const std::vector<typen
     for(Index q = bnd_offsets[R]; q < bnd_offsets[R + 1]; ++q)
       spring(bnd_edge[q], i, bnd_vertex[q], blocks + fs.bnd_block(q) * DD, diag);
   }
-  // Element matrices in element order, one thread: two elements share
-  // blocks, and a fixed order keeps the sums independent of the thread count.
-  const auto& elements = fs.assembled_elements();
-  const auto& dest = fs.element_destinations();
-  std::array<double, ND * ND> Ke;
-  for(std::size_t s = 0; s < elements.size(); ++s) {
-    const std::size_t t = elements[s];
-    Ke.fill(0.0);
-    model.add_element_matrix(element_points<D>(net.elements, x, t), Ke.data());
-    // all of it, rows of constrained vertices too: a model that breaks there
-    // breaks elsewhere on another step
-    for(double v : Ke)
-      SPRING_MOTION_ELEMENT_CHECK(std::isfinite(v), t, "element stiffness of element " << t << " is not finite");
-    for(int a = 0; a <= D; ++a)
-      for(int b = 0; b <= D; ++b) {
-        const Index to = dest[(s * (D + 1) + std::size_t(a)) * (D + 1) + std::size_t(b)];
-        if(to == Free_system<D>::none)
-          continue;
-        double* out = blocks + std::size_t(to) * DD;
-        for(int r = 0; r < D; ++r)
-          for(int c = 0; c < D; ++c) {
-            out[r * D + c] += Ke[std::size_t((a * D + r) * ND + (b * D + c))];
-          }
-      }
-  }
+  if constexpr(Is_element_model<Model, D>::value)
+    add_element_matrices(net, x, model, fs);
+  fs.apply_projectors(threads);
   fs.finish_block_load(threads);
 }
 

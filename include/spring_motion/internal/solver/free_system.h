@@ -171,7 +171,87 @@ public:
     inv_diag_.resize(nf * w);
     b_.resize(nf);
     x_.resize(nf);
+    projector_of_row_.clear();
+    projectors_.clear();
     built_ = true;
+  }
+
+  /// Block systems: restricts the increment of the vertices listed to the
+  /// range of their symmetric projectors P (row-major D x D; sliding
+  /// vertices, P = I - n n^T per plane). The loaded system becomes
+  /// P A P + s (I - P) on those rows and columns, right-hand side P b, which
+  /// stays symmetric positive definite and whose solution has no component
+  /// outside the range (s, the diagonal block's mean eigenvalue, keeps the
+  /// removed directions at the scale of the rest of the spectrum). Kept
+  /// until the next build.
+  void set_projectors(const std::vector<Index>& vertices, const std::vector<std::array<double, DD>>& projectors)
+  {
+    SPRING_MOTION_CHECK(block_ || vertices.empty(), "projected rows need a block system");
+    std::vector<Index> row_of(free_.empty() ? 0 : *std::max_element(order_.begin(), order_.end()) + 1, none);
+    for(std::size_t r = 0; r < order_.size(); ++r)
+      row_of[order_[r]] = Index(r);
+    projector_of_row_.assign(vertices.empty() ? 0 : order_.size(), none);
+    projectors_.clear();
+    for(std::size_t k = 0; k < vertices.size(); ++k) {
+      const Index v = vertices[k];
+      SPRING_MOTION_CHECK(v < row_of.size() && row_of[v] != none, "projected vertex " << v << " is not free");
+      projector_of_row_[row_of[v]] = Index(projectors_.size());
+      projectors_.push_back(projectors[k]);
+    }
+  }
+
+  /// Applies the projectors to the loaded block values (before the diagonal
+  /// blocks are inverted). Each row changes only its own blocks.
+  void apply_projectors(int threads)
+  {
+    if(projector_of_row_.empty())
+      return;
+    const auto proj = [&](Index row) {
+      const Index p = projector_of_row_[row];
+      return p == none ? nullptr : projectors_[p].data();
+    };
+    // B <- P B (left) or B <- B P (right), P symmetric
+    const auto left = [](const double* P, double* B) {
+      std::array<double, DD> t{};
+      for(int r = 0; r < D; ++r)
+        for(int c = 0; c < D; ++c)
+          for(int k = 0; k < D; ++k)
+            t[r * D + c] += P[r * D + k] * B[k * D + c];
+      std::copy(t.begin(), t.end(), B);
+    };
+    const auto right = [](double* B, const double* P) {
+      std::array<double, DD> t{};
+      for(int r = 0; r < D; ++r)
+        for(int c = 0; c < D; ++c)
+          for(int k = 0; k < D; ++k)
+            t[r * D + c] += B[r * D + k] * P[k * D + c];
+      std::copy(t.begin(), t.end(), B);
+    };
+    const long nf = long(order_.size());
+#pragma omp parallel for schedule(static) num_threads(team(threads))
+    for(long r = 0; r < nf; ++r) {
+      const std::size_t R = std::size_t(r);
+      const double* P = proj(Index(R));
+      for(Index q = row_offsets_[R]; q < row_offsets_[R + 1]; ++q) {
+        const double* Q = proj(col_[q]);
+        if(P)
+          left(P, &blocks_[off_block(q) * DD]);
+        if(Q)
+          right(&blocks_[off_block(q) * DD], Q);
+      }
+      if(!P)
+        continue;
+      for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
+        left(P, &blocks_[bnd_block(q) * DD]);
+      double* d = &blocks_[R * DD];
+      double trace = 0;
+      for(int c = 0; c < D; ++c)
+        trace += d[c * D + c];
+      left(P, d);
+      right(d, P);
+      for(int i = 0; i < DD; ++i)
+        d[i] += (trace / D) * ((i / D == i % D ? 1.0 : 0.0) - P[i]);
+    }
   }
 
   /// This step's values of a scalar system from the edge stiffness k (one
@@ -245,6 +325,8 @@ public:
             s[c] -= bnd_val_[q] * x[bnd_vertex_[q]][c];
       b_[R] = s;
       x_[R] = x[order_[R]];
+      if(!projector_of_row_.empty() && projector_of_row_[R] != none)
+        x_[R] = block_product<D>(projectors_[projector_of_row_[R]].data(), x_[R]);
     }
   }
 
@@ -781,6 +863,8 @@ private:
   std::vector<Index> row_offsets_, col_, edge_;
   std::vector<Index> bnd_offsets_, bnd_vertex_, bnd_edge_;
   std::vector<Index> elements_, element_dest_;
+  std::vector<Index> projector_of_row_;          // empty, or one per row: into projectors_ or none
+  std::vector<std::array<double, DD>> projectors_;
   std::vector<double> val_, bnd_val_, diag_, inv_diag_, blocks_, partial_;
   std::vector<Row> b_, x_, r_, z_, p_, q_, s_;
   Aggregation_multigrid<D> multigrid_;

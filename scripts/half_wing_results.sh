@@ -5,7 +5,7 @@
 # spanwise axis through (0.5, 0, 0), with the plane z = 0 sliding and, for
 # comparison, held fixed, for the paper's grid-scaled springs and the
 # ball-vertex springs with k = 1/h^2. Writes docs/half_wing/results.txt and
-# the figure docs/half_wing/symmetry_plane.png.
+# the figure docs/half_wing/symmetry_plane.png (ball-vertex springs).
 #
 #   scripts/half_wing_results.sh [BUILD_DIR]     (default: build; about 5 minutes)
 set -euo pipefail
@@ -36,5 +36,5 @@ mesh="$work/half_wing.msh"
 } > "$out/results.txt.tmp"
 mv "$out/results.txt.tmp" "$out/results.txt"
 /usr/bin/python3 scripts/plot_symmetry_plane.py --figure "$out/symmetry_plane.png" "$mesh" \
-  "$work/grid_scaled_sliding.msh" "$work/grid_scaled_fixed.msh"
+  "$work/ball_vertex_p2_sliding.msh" "$work/ball_vertex_p2_fixed.msh"
 cat "$out/results.txt"

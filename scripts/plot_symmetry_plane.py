@@ -18,6 +18,7 @@ read with Debian's python3-meshio.
 import argparse
 import contextlib
 import io
+import json
 import pathlib
 import sys
 
@@ -101,7 +102,12 @@ def main():
         ax.set_xlim(-0.4, 1.4)
         ax.set_ylim(-0.7, 0.7)
         ax.set_aspect("equal")
-        ax.set_title(pathlib.Path(path).stem, fontsize=9)
+        title = pathlib.Path(path).stem
+        report = pathlib.Path(path).with_suffix(".json")  # the run's report beside its mesh, if any
+        if report.exists():
+            r = json.loads(report.read_text())
+            title += ": %s at %.2f deg" % ("completed" if r["completed"] else "last valid", r["final_angle_deg"])
+        ax.set_title(title, fontsize=9)
     fig.tight_layout()
     fig.savefig(a.figure, dpi=130)
 

@@ -296,15 +296,18 @@ std::vector<int> resolve_labels(const std::string& path, const Indexed_mesh<D>& 
   return labels;
 }
 
-/// Boundary vertices on a moving part move; with `fixed` given only those on
-/// a fixed part are fixed (the rest of the boundary is free), otherwise the
-/// whole remaining boundary is fixed. Interior vertices are free.
+/// The command line's rules (Boundary_label_roles): boundary vertices on a
+/// moving part move; with `fixed` given only those on a fixed part are fixed
+/// (the rest of the boundary is free), otherwise the whole remaining boundary
+/// is fixed, except what slides. Interior vertices are free.
 template <int D>
 std::vector<Vertex_role> command_line_roles(const Spring_network<D>& net, const std::vector<int>& moving,
-                                            const std::optional<std::vector<int>>& fixed)
+                                            const std::optional<std::vector<int>>& fixed,
+                                            const std::vector<int>& sliding = {})
 {
   Boundary_label_roles rules;
   rules.moving = moving;
+  rules.sliding = sliding;
   if(fixed) {
     rules.fixed = *fixed;
     rules.fixed_given = true;
@@ -361,6 +364,7 @@ struct Deform_arguments
 {
   std::vector<Label> moving;
   std::optional<std::vector<Label>> fixed;
+  std::vector<Label> sliding;
   std::string model;
   std::optional<double> pitch;
   std::optional<std::vector<double>> center, axis, translate;
@@ -379,9 +383,6 @@ template <int D>
 std::pair<std::vector<std::array<double, D>>, std::string> run_deform(const Mesh& m, const Deform_arguments& a)
 {
   const Indexed_mesh<D>& mesh = m.file->template mesh<D>();
-  if(a.model == "torsional" && D == 3)
-    throw py::value_error("model='torsional': the torsional model is implemented in 2D only; for a 3D mesh expected "
-                          "one of lineal, lineal_p2, blom, zeng_ethier, grid_scaled");
   // motion arguments are checked before labels, as the command line checks its options first
   std::optional<Pitch_motion<D>> pitch;
   std::optional<Translation_motion<D>> translation;
@@ -410,6 +411,9 @@ std::pair<std::vector<std::array<double, D>>, std::string> run_deform(const Mesh
   std::optional<std::vector<int>> fixed;
   if(a.fixed)
     fixed = resolve_labels(m.path, mesh, b, "fixed", *a.fixed);
+  std::vector<int> sliding;
+  if(!a.sliding.empty())
+    sliding = resolve_labels(m.path, mesh, b, "sliding", a.sliding);
 
   std::optional<Displacement_motion<D>> by_point;
   std::vector<std::array<double, D>> positions;
@@ -421,7 +425,7 @@ std::pair<std::vector<std::array<double, D>>, std::string> run_deform(const Mesh
       // All the file's vertices, in file order (unused ones stay put), so that
       // positions line up with mesh.points, as in the command line's output.
       Spring_network<D> net = make_spring_network<D>(mesh.points, mesh.elements, b.boundary);
-      std::vector<Vertex_role> roles = command_line_roles(net, moving, fixed);
+      std::vector<Vertex_role> roles = command_line_roles(net, moving, fixed, sliding);
       if(!pitch && !translation) {
         by_point.emplace();
         for(Index v = 0; v < roles.size(); ++v)
@@ -456,7 +460,59 @@ std::pair<std::vector<std::array<double, D>>, std::string> run_deform(const Mesh
   return {std::move(positions), std::move(report)};
 }
 
-py::tuple deform(const Mesh& m, const py::object& moving, const py::object& fixed, const std::string& model,
+/// The command line's --solver, --omega, --tolerance, ... (docs/cli.md).
+Deform_options deform_options(const std::string& solver, const std::optional<double>& omega,
+                              const std::optional<double>& tolerance, const std::optional<long long>& max_iterations,
+                              long long max_substep_halvings, int threads)
+{
+  Deform_options o;
+  if(solver == "paper")
+    o.solver = Solver_options::paper();
+  else if(solver == "sor")
+    o.solver.method = Solver_method::sor;
+  else if(solver == "cg-sgs")
+    o.solver.preconditioner = Preconditioner::symmetric_gauss_seidel;
+  else if(solver != "cg")
+    throw py::value_error("solver: expected cg, cg-sgs, sor or paper, found '" + solver + "'");
+  if(omega) {
+    if(solver == "cg" || solver == "cg-sgs")
+      throw py::value_error("omega is the relaxation factor of SOR: use it with solver='sor' or 'paper'");
+    if(!(*omega > 0 && *omega < 2))
+      throw py::value_error("omega: expected a number in (0, 2)");
+    o.solver.relaxation_factor = *omega;
+  }
+  if(tolerance) {
+    if(!(*tolerance > 0) || !std::isfinite(*tolerance))
+      throw py::value_error("tolerance: expected a positive number");
+    o.solver.tolerance = *tolerance;
+  }
+  if(max_iterations) {
+    if(*max_iterations < 1)
+      throw py::value_error("max_iterations: expected a positive number");
+    o.solver.max_iterations = std::size_t(*max_iterations);
+  }
+  if(max_substep_halvings < 0 || max_substep_halvings > 20)
+    throw py::value_error("max_substep_halvings: expected 0 to 20");
+  o.max_substep_halvings = std::size_t(max_substep_halvings);
+  if(threads < 0)
+    throw py::value_error("threads: expected 0 (chosen by measurement) or a positive number");
+  o.solver.threads = threads;
+  return o;
+}
+
+void check_model_name(const std::string& model)
+{
+  const auto& names = model_names();
+  if(std::find(names.begin(), names.end(), model) == names.end()) {
+    std::string valid;
+    for(const auto& n : names)
+      valid += (valid.empty() ? "" : ", ") + n;
+    throw py::value_error("model: unknown stiffness model '" + model + "': expected one of " + valid);
+  }
+}
+
+py::tuple deform(const Mesh& m, const py::object& moving, const py::object& fixed, const py::object& sliding,
+                 const std::string& model,
                  const std::optional<double>& pitch, const std::optional<std::vector<double>>& center,
                  const std::optional<std::vector<double>>& axis, const std::optional<std::vector<double>>& translate,
                  const py::object& displacement, long long steps, const std::string& solver,
@@ -480,13 +536,9 @@ py::tuple deform(const Mesh& m, const py::object& moving, const py::object& fixe
   a.moving = to_labels(moving, "moving");
   if(!fixed.is_none())
     a.fixed = to_labels(fixed, "fixed");
-  const auto& names = model_names();
-  if(std::find(names.begin(), names.end(), model) == names.end()) {
-    std::string valid;
-    for(const auto& n : names)
-      valid += (valid.empty() ? "" : ", ") + n;
-    throw py::value_error("model: unknown stiffness model '" + model + "': expected one of " + valid);
-  }
+  if(!sliding.is_none())
+    a.sliding = to_labels(sliding, "sliding");
+  check_model_name(model);
   a.model = model;
   a.pitch = pitch;
   a.center = center;
@@ -495,39 +547,8 @@ py::tuple deform(const Mesh& m, const py::object& moving, const py::object& fixe
   a.displacement = displacement;
   if(steps < 1)
     throw py::value_error("steps: expected a positive number of steps, found " + std::to_string(steps));
+  a.options = deform_options(solver, omega, tolerance, max_iterations, max_substep_halvings, threads);
   a.options.number_of_steps = std::size_t(steps);
-  // the command line's --solver, --omega, --tolerance, ... (docs/cli.md)
-  if(solver == "paper")
-    a.options.solver = Solver_options::paper();
-  else if(solver == "sor")
-    a.options.solver.method = Solver_method::sor;
-  else if(solver == "cg-sgs")
-    a.options.solver.preconditioner = Preconditioner::symmetric_gauss_seidel;
-  else if(solver != "cg")
-    throw py::value_error("solver: expected cg, cg-sgs, sor or paper, found '" + solver + "'");
-  if(omega) {
-    if(solver == "cg" || solver == "cg-sgs")
-      throw py::value_error("omega is the relaxation factor of SOR: use it with solver='sor' or 'paper'");
-    if(!(*omega > 0 && *omega < 2))
-      throw py::value_error("omega: expected a number in (0, 2)");
-    a.options.solver.relaxation_factor = *omega;
-  }
-  if(tolerance) {
-    if(!(*tolerance > 0) || !std::isfinite(*tolerance))
-      throw py::value_error("tolerance: expected a positive number");
-    a.options.solver.tolerance = *tolerance;
-  }
-  if(max_iterations) {
-    if(*max_iterations < 1)
-      throw py::value_error("max_iterations: expected a positive number");
-    a.options.solver.max_iterations = std::size_t(*max_iterations);
-  }
-  if(max_substep_halvings < 0 || max_substep_halvings > 20)
-    throw py::value_error("max_substep_halvings: expected 0 to 20");
-  a.options.max_substep_halvings = std::size_t(max_substep_halvings);
-  if(threads < 0)
-    throw py::value_error("threads: expected 0 (OpenMP's default) or a positive number");
-  a.options.solver.threads = threads;
 
   py::object positions;
   std::string report;
@@ -585,6 +606,153 @@ void write(const std::string& path, const Mesh& m, const py::object& positions, 
   else
     write_with<3>(path, m, positions, point_data, cell_data);
 }
+
+
+// ---- the per-time-step deformer ------------------------------------------------
+
+/// What one Deformer.move() did: the library's Step_report.
+struct Step
+{
+  Step_report report;
+  std::vector<std::size_t> inverted_elements;
+  bool valid() const { return report.inverted == 0; }
+};
+
+py::dict step_dict(const Step& s)
+{
+  const Step_report& r = s.report;
+  py::dict d;
+  d["valid"] = s.valid();
+  d["step"] = r.step;
+  d["moves"] = r.fraction;
+  d["iterations"] = r.iterations;
+  d["converged"] = r.converged;
+  d["max_update"] = r.max_update;
+  d["residual"] = r.residual;
+  d["error_estimate"] = r.error_estimate;
+  d["substeps"] = r.substeps;
+  d["rejected_attempts"] = r.rejected_attempts;
+  d["inverted"] = r.inverted;
+  d["threads"] = r.threads;
+  d["min_size_ratio"] = r.min_size_ratio;
+  d["max_size_ratio"] = r.max_size_ratio;
+  d["max_skewness_moving"] = r.max_skewness_moving;
+  d["max_skewness_all"] = r.max_skewness_all;
+  d["min_angle_deg_moving"] = r.min_angle_deg_moving;
+  d["min_angle_deg_all"] = r.min_angle_deg_all;
+  d["seconds"] = py::dict(py::arg("stiffness") = r.seconds_stiffness, py::arg("solve") = r.seconds_solve,
+                          py::arg("check") = r.seconds_check);
+  return d;
+}
+
+/// Network_deformer over all the file's vertices in file order (so that
+/// indices are mesh.points' rows), with the command line's roles and checks.
+class Deformer
+{
+public:
+  Deformer(const Mesh& m, const py::object& moving, const py::object& fixed, const py::object& sliding,
+           const std::string& model, Deform_options options)
+      : mesh_(m), model_(model), options_(options)
+  {
+    if(moving.is_none())
+      throw py::value_error("expected moving=: the boundary labels (numbers or names) that move");
+    check_model_name(model);
+    const std::vector<Label> mv = to_labels(moving, "moving");
+    std::optional<std::vector<Label>> fx;
+    if(!fixed.is_none())
+      fx = to_labels(fixed, "fixed");
+    std::vector<Label> sl;
+    if(!sliding.is_none())
+      sl = to_labels(sliding, "sliding");
+    if(m.file->dimension == 2)
+      d2_ = build<2>(mv, fx, sl);
+    else
+      d3_ = build<3>(mv, fx, sl);
+  }
+
+  int dimension() const { return mesh_.file->dimension; }
+
+  py::array_t<std::int64_t> moving_vertices() const
+  {
+    return d2_ ? int_array(d2_->moving_vertices()) : int_array(d3_->moving_vertices());
+  }
+
+  /// A read-only view of the positions (no copy; `self` keeps it alive).
+  static py::array positions(const py::object& self)
+  {
+    const Deformer& d = self.cast<const Deformer&>();
+    const double* data = d.d2_ ? d.d2_->positions().front().data() : d.d3_->positions().front().data();
+    const py::ssize_t n = py::ssize_t(d.d2_ ? d.d2_->positions().size() : d.d3_->positions().size());
+    const py::ssize_t D = d.dimension();
+    py::array a(py::dtype::of<double>(), {n, D}, {D * py::ssize_t(sizeof(double)), py::ssize_t(sizeof(double))},
+                data, self);
+    a.attr("flags").attr("writeable") = false;
+    return a;
+  }
+
+  Step move(const py::handle& displacement)
+  {
+    return d2_ ? move_with<2>(*d2_, displacement) : move_with<3>(*d3_, displacement);
+  }
+
+  void reset()
+  {
+    if(d2_)
+      d2_->reset();
+    else
+      d3_->reset();
+  }
+
+  std::size_t sliding_vertices() const
+  {
+    return d2_ ? d2_->number_of_sliding_vertices() : d3_->number_of_sliding_vertices();
+  }
+
+private:
+  template <int D>
+  std::unique_ptr<Network_deformer<D>> build(const std::vector<Label>& mv, const std::optional<std::vector<Label>>& fx,
+                                             const std::vector<Label>& sl)
+  {
+    const Mesh& m = mesh_;
+    const Indexed_mesh<D>& mesh = m.file->template mesh<D>();
+    const Boundary_labels<D> b = find_boundary_labels(mesh);
+    const std::vector<int> moving = resolve_labels(m.path, mesh, b, "moving", mv);
+    std::optional<std::vector<int>> fixed;
+    if(fx)
+      fixed = resolve_labels(m.path, mesh, b, "fixed", *fx);
+    std::vector<int> sliding;
+    if(!sl.empty())
+      sliding = resolve_labels(m.path, mesh, b, "sliding", sl);
+    py::gil_scoped_release release;
+    try {
+      Spring_network<D> net = make_spring_network<D>(mesh.points, mesh.elements, b.boundary);
+      std::vector<Vertex_role> roles = command_line_roles(net, moving, fixed, sliding);
+      check_roles(m, net, roles);
+      return std::make_unique<Network_deformer<D>>(std::move(net), std::move(roles));
+    } catch(const Input_error&) {
+      throw;
+    } catch(const Error& e) {
+      throw Input_error(m.path, 0, without_source_location(e.what()));
+    }
+  }
+
+  template <int D>
+  Step move_with(Network_deformer<D>& d, const py::handle& displacement)
+  {
+    const auto disp = to_points<D>(displacement, d.moving_vertices().size(), "displacement");
+    Step s;
+    py::gil_scoped_release release;
+    s.report = with_model(model_, [&](const auto& model) { return d.move(disp, model, options_); });
+    s.inverted_elements = d.last_inverted_elements();
+    return s;
+  }
+
+  Mesh mesh_;
+  std::string model_;
+  Deform_options options_;
+  std::unique_ptr<Network_deformer<2>> d2_;
+  std::unique_ptr<Network_deformer<3>> d3_;
+};
 
 } // namespace
 } // namespace python
@@ -685,17 +853,17 @@ PYBIND11_MODULE(spring_motion, m)
 
   m.def(
       "deform",
-      [](const Mesh& mesh, const py::object& moving, const py::object& fixed, const std::string& model,
-         std::optional<double> pitch, std::optional<std::vector<double>> center,
+      [](const Mesh& mesh, const py::object& moving, const py::object& fixed, const py::object& sliding,
+         const std::string& model, std::optional<double> pitch, std::optional<std::vector<double>> center,
          std::optional<std::vector<double>> axis, std::optional<std::vector<double>> translate,
          const py::object& displacement, long long steps, const std::string& solver, std::optional<double> omega,
          std::optional<double> tolerance, std::optional<long long> max_iterations, long long max_substep_halvings,
          int threads) {
-        return deform(mesh, moving, fixed, model, pitch, center, axis, translate, displacement, steps, solver, omega,
+        return deform(mesh, moving, fixed, sliding, model, pitch, center, axis, translate, displacement, steps, solver, omega,
                       tolerance, max_iterations, max_substep_halvings, threads);
       },
-      py::arg("mesh"), py::arg("moving") = py::none(), py::arg("fixed") = py::none(), py::kw_only(),
-      py::arg("model") = "grid_scaled", py::arg("pitch") = py::none(), py::arg("center") = py::none(),
+      py::arg("mesh"), py::arg("moving") = py::none(), py::arg("fixed") = py::none(),
+      py::arg("sliding") = py::none(), py::kw_only(), py::arg("model") = "grid_scaled", py::arg("pitch") = py::none(), py::arg("center") = py::none(),
       py::arg("axis") = py::none(), py::arg("translate") = py::none(), py::arg("displacement") = py::none(),
       py::arg("steps") = 100, py::arg("solver") = "cg", py::arg("omega") = py::none(),
       py::arg("tolerance") = py::none(), py::arg("max_iterations") = py::none(),
@@ -705,13 +873,75 @@ PYBIND11_MODULE(spring_motion, m)
 (positions, report): the (n, d) final positions (the last valid state if a
 step inverted an element) and the JSON report (docs/report_format.md) as a dict.
 
-moving, fixed: a label or a sequence of labels, each a number or a physical
-name. The boundary not named moving is fixed; with `fixed` given, only those
-parts are fixed and the rest of the boundary is free.
+moving, fixed, sliding: a label or a sequence of labels, each a number or a
+physical name. The boundary not named moving (or sliding) is fixed; with
+`fixed` given, only those parts are fixed and the rest of the boundary is
+free. Vertices of `sliding` parts (planar: a symmetry plane) move within
+their plane.
 One motion: pitch=DEG with center=(x, y[, z]) (and axis=(ax, ay, az) in 3D),
 translate=(dx, dy[, dz]), or displacement=(n, d) array (the final displacement
 of each moving vertex; other rows are ignored).
 The GIL is released while the run solves.)");
+
+
+  py::class_<Step>(m, "Step", "What one Deformer.move() did (the library's step report).")
+      .def_property_readonly("valid", &Step::valid,
+                             "False when the step inverted an element: the positions stayed at the last valid state")
+      .def_property_readonly("step", [](const Step& s) { return s.report.step; }, "calls of move() so far, this one included")
+      .def_property_readonly("iterations", [](const Step& s) { return s.report.iterations; })
+      .def_property_readonly("converged", [](const Step& s) { return s.report.converged; })
+      .def_property_readonly("error_estimate", [](const Step& s) { return s.report.error_estimate; })
+      .def_property_readonly("residual", [](const Step& s) { return s.report.residual; })
+      .def_property_readonly("substeps", [](const Step& s) { return s.report.substeps; })
+      .def_property_readonly("rejected_attempts", [](const Step& s) { return s.report.rejected_attempts; })
+      .def_property_readonly("inverted", [](const Step& s) { return s.report.inverted; },
+                             "elements the rejected step inverted (0 for a valid step)")
+      .def_property_readonly("inverted_elements", [](const Step& s) { return int_array(s.inverted_elements); },
+                             "their indices (rows of mesh.elements)")
+      .def_property_readonly("threads", [](const Step& s) { return s.report.threads; })
+      .def_property_readonly("min_size_ratio", [](const Step& s) { return s.report.min_size_ratio; })
+      .def_property_readonly("max_skewness_moving", [](const Step& s) { return s.report.max_skewness_moving; })
+      .def_property_readonly("min_angle_deg_moving", [](const Step& s) { return s.report.min_angle_deg_moving; })
+      .def("as_dict", &step_dict, "every field as a dict")
+      .def("__repr__", [](const Step& s) {
+        return std::string("<spring_motion.Step ") + (s.valid() ? "valid" : "INVALID") + ", " +
+               std::to_string(s.report.iterations) + " iterations>";
+      });
+
+  py::class_<Deformer>(m, "Deformer",
+                       R"(A mesh moved time step by time step (the library's Network_deformer).
+
+Built once (spring network, ordering, solver state); each move(displacement)
+places the moving vertices at their INITIAL positions plus `displacement`
+(so nothing drifts), moves the rest with the model, checks every element
+exactly and, if one inverted, keeps the last valid positions and says so.)")
+      .def(py::init([](const Mesh& mesh, const py::object& moving, const py::object& fixed, const py::object& sliding,
+                       const std::string& model, const std::string& solver, std::optional<double> omega,
+                       std::optional<double> tolerance, std::optional<long long> max_iterations,
+                       long long max_substep_halvings, int threads) {
+             return std::make_unique<Deformer>(
+                 mesh, moving, fixed, sliding, model,
+                 deform_options(solver, omega, tolerance, max_iterations, max_substep_halvings, threads));
+           }),
+           py::arg("mesh"), py::arg("moving") = py::none(), py::arg("fixed") = py::none(),
+           py::arg("sliding") = py::none(), py::kw_only(), py::arg("model") = "grid_scaled",
+           py::arg("solver") = "cg", py::arg("omega") = py::none(), py::arg("tolerance") = py::none(),
+           py::arg("max_iterations") = py::none(), py::arg("max_substep_halvings") = 0, py::arg("threads") = 0,
+           R"(moving, fixed, sliding: labels (numbers or names) as in deform(); vertices of
+`sliding` parts (planar ones: symmetry planes) move within their plane.
+model and the solver options as in deform().)")
+      .def_property_readonly("dimension", &Deformer::dimension)
+      .def_property_readonly("moving_vertices", &Deformer::moving_vertices,
+                             "indices into mesh.points of the moving vertices, in the order move() takes them")
+      .def_property_readonly("positions", &Deformer::positions,
+                             "(n, d) read-only view of the current positions (no copy: it changes with move())")
+      .def_property_readonly("sliding_vertices", &Deformer::sliding_vertices, "how many vertices slide")
+      .def("move", &Deformer::move, py::arg("displacement"),
+           R"(One time step: `displacement` is a (len(moving_vertices), d) array, the
+displacement of each moving vertex from its initial position. Returns a Step;
+an invalid step (step.valid False) leaves the positions at the last valid
+state and does not raise. The GIL is released while it runs.)")
+      .def("reset", &Deformer::reset, "back to the initial mesh");
 
   m.def(
       "write_mesh",

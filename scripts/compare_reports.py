@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Says whether regenerated JSON reports reproduce committed ones: every
-value equal except timings (any key under "seconds", "seconds_total") and
-fields one side lacks (listed, not counted as differences).
+value equal except timings (any key under "seconds", "seconds_total"), the
+thread counts chosen by measuring them ("threads") and fields one side lacks
+(listed, not counted as differences).
 
     /usr/bin/python3 scripts/compare_reports.py REVISION FILE...
 
@@ -14,7 +15,7 @@ import json
 import subprocess
 import sys
 
-TIMING_KEYS = {"seconds", "seconds_total"}
+TIMING_KEYS = {"seconds", "seconds_total", "threads"}
 
 
 def walk(old, new, path, differ, missing):

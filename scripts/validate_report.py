@@ -94,6 +94,9 @@ def validate(path):
         for k in ("substeps", "rejected_attempts"):
             if not isinstance(s.get(k), int) or isinstance(s.get(k), bool) or s[k] < 0:
                 fail(path, f"steps[{i}].{k} should be a non-negative integer")
+        # written since the thread count is chosen by measurement; older reports lack it
+        if "threads" in s and (not isinstance(s["threads"], int) or isinstance(s["threads"], bool) or s["threads"] < 1):
+            fail(path, f"steps[{i}].threads should be a positive integer")
         for k in ("stiffness", "solve", "check"):
             check_number(path, f"steps[{i}].seconds.{k}", s["seconds"].get(k))
     if not isinstance(r["completed"], bool):

@@ -93,6 +93,7 @@ Json step(const Step_report& s)
   j["substeps"] = s.substeps;
   j["inverted"] = s.inverted;
   j["rejected_attempts"] = s.rejected_attempts;
+  j["threads"] = s.threads;
   j["min_size_ratio"] = number(s.min_size_ratio);
   j["max_size_ratio"] = number(s.max_size_ratio);
   j["max_skewness_moving"] = number(s.max_skewness_moving);

@@ -370,6 +370,7 @@ TEST_CASE("deform: move() step by step reproduces run() with the same schedule",
   const auto& moving = stepped.moving_vertices();
   REQUIRE(moving.size() == stepped.number_of_moving_vertices());
   const std::vector<std::array<double, 2>>* positions = &stepped.positions();
+  const std::array<double, 2>* storage = stepped.positions().data();
   for(std::size_t i = 1; i <= options.number_of_steps; ++i) {
     const double t = double(i) / double(options.number_of_steps);
     std::vector<std::array<double, 2>> displacement;
@@ -384,6 +385,7 @@ TEST_CASE("deform: move() step by step reproduces run() with the same schedule",
     CHECK(s.max_skewness_all == Approx(report.steps[i - 1].max_skewness_all).epsilon(1e-6));
   }
   CHECK(&stepped.positions() == positions); // read in place, no copy
+  CHECK(stepped.positions().data() == storage); // the same storage: a view of it (Python's) stays valid
   // each step's solve ends within about tol of the same solution; the
   // differences carry into the next step's stiffness and add up over the
   // steps (as in test_solver.cpp), a factor 10 because the error is an estimate

@@ -43,6 +43,9 @@ struct Step_report
   double min_angle_deg_moving = std::numeric_limits<double>::quiet_NaN();
   double min_angle_deg_all = std::numeric_limits<double>::quiet_NaN();
   double seconds_stiffness = 0, seconds_solve = 0, seconds_check = 0;
+  /// OpenMP threads of the step's (last) increment: Solver_options::threads,
+  /// or with 0 the thread count chosen by measurement
+  int threads = 0;
 };
 
 /// The step at which the motion stopped: it inverted these elements (indices

@@ -13,6 +13,7 @@
 #include <spring_motion/internal/geometry/sliding_planes.h>
 #include <spring_motion/internal/solver/assemble.h>
 #include <spring_motion/internal/solver/free_system.h>
+#include <spring_motion/internal/solver/thread_chooser.h>
 #include <spring_motion/internal/solver/threads.h>
 #include <spring_motion/motion/Motion_description.h>
 #include <spring_motion/skewness.h>
@@ -89,6 +90,9 @@ public:
 
   const Spring_network<D>& network() const { return net_; }
   const std::vector<Vertex_role>& roles() const { return roles_; }
+  /// The current positions, one per network vertex. The vector keeps its
+  /// storage for the deformer's lifetime (steps, rollbacks and reset() copy
+  /// into it), so a pointer to its data stays valid.
   const std::vector<Point>& positions() const { return positions_; }
   const Orientation_record& orientation_record() const { return record_; }
   /// elements with at least one moving vertex
@@ -113,7 +117,7 @@ public:
   /// only if a later run needs other options).
   void reset()
   {
-    positions_ = net_.points;
+    std::copy(net_.points.begin(), net_.points.end(), positions_.begin());
     increment_.assign(net_.number_of_vertices(), Point{});
     previous_increment_.assign(net_.number_of_vertices(), Point{});
     history_ = History{};
@@ -352,7 +356,7 @@ private:
       }
       if(ok)
         return true;
-      positions_ = saved_positions;
+      std::copy(saved_positions.begin(), saved_positions.end(), positions_.begin());
       increment_ = saved_increment;
       previous_increment_ = saved_previous;
       history_ = saved_history;
@@ -370,7 +374,10 @@ private:
                      Step_report& s, Attempt& failed)
   {
     constexpr bool element_model = internal::Is_element_model<Model, D>::value;
-    const int threads = options.solver.threads;
+    const auto attempt_start = Clock::now();
+    Solver_options solver_options = options.solver;
+    const int threads = solver_options.threads = threads_.next(options.solver.threads);
+    s.threads = threads;
     const std::size_t n = net_.number_of_vertices();
     auto t0 = Clock::now();
     delta_.assign(n, Point{});
@@ -433,7 +440,7 @@ private:
       system_observer(view);
     }
     t0 = Clock::now();
-    const Solve_report sr = solver_.solve(options.solver);
+    const Solve_report sr = solver_.solve(solver_options);
     solver_.store(delta_);
     s.seconds_solve += seconds_since(t0);
     s.iterations += sr.iterations;
@@ -457,9 +464,12 @@ private:
     failed.inverted.clear();
     find_inverted_elements(net_, candidate_, record_, std::back_inserter(failed.inverted), threads);
     s.seconds_check += seconds_since(t0);
+    threads_.record(seconds_since(attempt_start), sr.iterations);
     if(!failed.inverted.empty())
       return false;
-    positions_.swap(candidate_);
+    // copied, not swapped: positions() keeps its storage for the deformer's
+    // lifetime, so a view of it (the Python module's) stays valid
+    std::copy(candidate_.begin(), candidate_.end(), positions_.begin());
     previous_increment_.swap(increment_);
     for(Index i : free_)
       increment_[i] = delta_[i];
@@ -495,6 +505,8 @@ private:
   // the solver state: ordering, pattern and multigrid aggregates, rebuilt
   // when the options they depend on change (Free_system::needs_build)
   internal::Free_system<D> solver_;
+  // Solver_options::threads = 0: the team or one thread, by measurement
+  internal::Thread_chooser threads_;
   // scratch of every attempt, kept to avoid allocating in the step loop
   std::vector<Point> delta_, candidate_, moving_targets_;
   // move(): the moving vertices' positions before and after the call

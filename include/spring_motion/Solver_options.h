@@ -110,8 +110,13 @@ struct Solver_options
   /// many vertices (coarsening can stall above it: then a symmetric
   /// Gauss-Seidel sweep smooths it instead).
   std::size_t multigrid_max_direct_rows = 256;
-  /// OpenMP threads for stiffness, solve, checks and quality; 0: OpenMP's
-  /// default. The result does not depend on it.
+  /// OpenMP threads for stiffness, solve, checks and quality. 0: step by
+  /// step OpenMP's default team or one thread, whichever measures cheaper
+  /// (on a machine whose cores other processes use, the team's barriers wait
+  /// for descheduled threads; Network_deformer tries both, and the other
+  /// again every 8-64 steps); the final quality pass uses OpenMP's default.
+  /// The result does not depend on it: every parallel loop gives the same
+  /// numbers for any thread count.
   int threads = 0;
 
   /// The paper's solver exactly: SOR (Gauss-Seidel) stopped by Eq. 12 with

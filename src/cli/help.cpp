@@ -129,7 +129,9 @@ options:
   --max-iterations N   iteration cap per solve (default 100000)
   --max-substep-halvings K
                        retry an inverting step as 2, 4, ... 2^K substeps (default 0)
-  --threads T          OpenMP threads (default: OpenMP's default)
+  --threads T          OpenMP threads (default: OpenMP's team or one thread,
+                       chosen step by step by measuring both; one thread wins
+                       when other processes keep the cores busy)
   --output OUT         by extension, may be repeated:
                        .vtu   the final mesh, with point 'displacement' and cell
                               'skewness' (R), 'valid' (1/0) and 'label'

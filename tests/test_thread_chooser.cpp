@@ -1,0 +1,82 @@
+// The thread chooser behind Solver_options::threads = 0: it must settle on
+// the cheaper of the team and one thread, keep probing the other rarely, and
+// follow a change of load.
+#include <spring_motion/internal/solver/thread_chooser.h>
+
+#include <catch2/catch.hpp>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+using spring_motion::internal::Thread_chooser;
+
+namespace {
+
+// Runs `steps` steps whose cost per unit of work is team_cost(step) with the
+// team and one_cost(step) with one thread; returns how many used the team.
+template <class Team_cost, class One_cost>
+int team_steps(Thread_chooser& c, int first, int steps, Team_cost team_cost, One_cost one_cost)
+{
+  int team = 0;
+  for(int i = first; i < first + steps; ++i) {
+    const int t = c.next(0);
+    const bool is_team = t > 1;
+    team += is_team;
+    const std::size_t iterations = 20;
+    c.record((is_team ? team_cost(i) : one_cost(i)) * (iterations + 4), iterations);
+  }
+  return team;
+}
+
+} // namespace
+
+TEST_CASE("thread chooser: a positive request is obeyed and nothing is measured", "[threads]")
+{
+  Thread_chooser c;
+  for(int i = 0; i < 5; ++i) {
+    CHECK(c.next(3) == 3);
+    c.record(1.0, 10);
+  }
+}
+
+#ifdef _OPENMP
+TEST_CASE("thread chooser: settles on the cheaper option and follows a change of load", "[threads]")
+{
+  omp_set_num_threads(2);
+  SECTION("idle machine: the team is twice as fast, one thread is only probed")
+  {
+    Thread_chooser c;
+    const int team = team_steps(c, 0, 100, [](int) { return 1.0; }, [](int) { return 2.0; });
+    CHECK(team >= 94);
+    CHECK(team < 100); // it did try one thread
+    CHECK(c.chosen() == 2);
+  }
+  SECTION("busy machine: the team is three times slower, it is only probed")
+  {
+    Thread_chooser c;
+    const int team = team_steps(c, 0, 100, [](int) { return 3.0; }, [](int) { return 1.0; });
+    CHECK(team <= 7);
+    CHECK(c.chosen() == 1);
+    // the cost of the probes: under 1.25x one thread all along
+    const double cost = (team * 3.0 + (100 - team) * 1.0) / 100;
+    CHECK(cost < 1.25);
+  }
+  SECTION("the load comes and goes: the choice follows within the probe interval")
+  {
+    Thread_chooser c;
+    const auto busy = [](int i) { return i >= 30 && i < 130; };
+    team_steps(c, 0, 30, [](int) { return 1.0; }, [](int) { return 2.0; });
+    CHECK(c.chosen() == 2);
+    // at most 64 steps (the longest interval) plus one to notice the load
+    // busy: the team costs 3, one thread 1; idle: 1 and 2
+    const auto team_cost = [&](int i) { return busy(i) ? 3.0 : 1.0; };
+    const auto one_cost = [&](int i) { return busy(i) ? 1.0 : 2.0; };
+    const int team_busy = team_steps(c, 30, 100, team_cost, one_cost);
+    CHECK(c.chosen() == 1);
+    CHECK(team_busy <= 66);
+    team_steps(c, 130, 80, team_cost, one_cost);
+    CHECK(c.chosen() == 2);
+  }
+}
+#endif

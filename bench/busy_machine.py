@@ -11,7 +11,8 @@ Runs `spring-motion deform` (whole process, wall clock) with --threads 1,
 --threads N (N = the machine's cores) and without --threads (the default:
 team or one thread, chosen step by step by measurement), in turns so that
 a changing load falls on all three, first with nothing else started, then
-with --hogs busy-looping processes. Prints the medians, the ratios to one
+with --hogs busy-looping processes at this script's own priority (run it
+without `nice -n -10`, or the runs would simply preempt the hogs). Prints the medians, the ratios to one
 thread, and how many steps the default ran on the team (from the reports).
 The default mesh is the Gmsh wing of scripts/make_gmsh_wing.py, made into
 BUILD_DIR/gmsh_wing/wing.msh when missing.
@@ -71,6 +72,7 @@ def main():
         for state in ("idle", "busy"):
             hogs = []
             if state == "busy":
+                # the hogs inherit this process's niceness, like the runs
                 hogs = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(a.hogs)]
                 time.sleep(1)
             try:

@@ -14,5 +14,5 @@ fi
 JOBS="${JOBS:-2}"
 cmake -S . -B build-petsc -DCMAKE_BUILD_TYPE=Release -DSPRING_MOTION_WITH_PETSC=ON \
   -DSPRING_MOTION_BUILD_EXAMPLES=OFF -DSPRING_MOTION_WARNINGS_AS_ERRORS=ON
-cmake --build build-petsc --target petsc_toolchain petsc_step_system -j"$JOBS"
+cmake --build build-petsc --target petsc_toolchain petsc_step_system spring-motion -j"$JOBS"
 ctest --test-dir build-petsc -L petsc --output-on-failure

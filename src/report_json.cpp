@@ -112,6 +112,7 @@ void write_report_json(const Deform_report& r, std::ostream& out)
 {
   Json j;
   j["format"] = "spring_motion.report/1";
+  j["backend"] = Json{{"name", r.backend}, {"ranks", r.ranks}};
   j["mesh"] = Json{{"dimension", r.dimension},
                    {"vertices", r.vertices},
                    {"elements", r.elements},

@@ -64,6 +64,10 @@ struct Deform_report
   // the run's setting
   int dimension = 2;
   std::size_t vertices = 0, elements = 0, moving_vertices = 0, fixed_vertices = 0, sliding_vertices = 0;
+  /// who solved the steps' systems: "shared" (this library, OpenMP) or
+  /// "petsc" (the command line's --backend petsc), on how many MPI ranks
+  std::string backend = "shared";
+  int ranks = 1;
   Model_description model;
   Motion_description motion;
   std::size_t number_of_steps = 0;

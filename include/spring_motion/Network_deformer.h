@@ -109,6 +109,13 @@ public:
   /// for benchmarks and diagnostics that re-solve the very same systems.
   std::function<void(const Step_system_view<D>&)> system_observer;
 
+  /// When set, solves each step's linear system instead of the built-in
+  /// solver: given the system (as system_observer sees it), it writes the
+  /// solution, one entry per row in the view's order, and reports. The step
+  /// goes on as with the built-in solve (exact check, rollback, substeps).
+  /// The PETSc backend of the command line is such a solve (docs/scaling.md).
+  std::function<Solve_report(const Step_system_view<D>&, std::vector<Point>& solution)> solve_override;
+
   /// The moving vertices, in the order `move()` takes their displacements.
   const std::vector<Index>& moving_vertices() const { return moving_; }
 
@@ -426,8 +433,8 @@ private:
     solver_.set_start(delta_, threads);
     s.seconds_stiffness += seconds_since(t0);
 
-    if(system_observer) {
-      Step_system_view<D> view;
+    Step_system_view<D> view;
+    if(system_observer || solve_override) {
       view.block = solver_.block();
       view.rows = solver_.rows();
       view.vertices = solver_.order().data();
@@ -437,10 +444,16 @@ private:
       view.diagonal = solver_.diagonal();
       view.rhs = solver_.rhs().data();
       view.initial = solver_.solution().data();
-      system_observer(view);
     }
+    if(system_observer)
+      system_observer(view);
     t0 = Clock::now();
-    const Solve_report sr = solver_.solve(solver_options);
+    Solve_report sr;
+    if(solve_override) {
+      sr = solve_override(view, outside_solution_);
+      solver_.set_solution(outside_solution_);
+    } else
+      sr = solver_.solve(solver_options);
     solver_.store(delta_);
     s.seconds_solve += seconds_since(t0);
     s.iterations += sr.iterations;
@@ -508,7 +521,7 @@ private:
   // Solver_options::threads = 0: the team or one thread, by measurement
   internal::Thread_chooser threads_;
   // scratch of every attempt, kept to avoid allocating in the step loop
-  std::vector<Point> delta_, candidate_, moving_targets_;
+  std::vector<Point> delta_, candidate_, moving_targets_, outside_solution_;
   // move(): the moving vertices' positions before and after the call
   std::vector<Point> move_start_, move_end_;
   std::vector<std::size_t> last_inverted_;

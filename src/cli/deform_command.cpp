@@ -15,6 +15,9 @@
 #include <spring_motion/io/write_mesh.h>
 #include <spring_motion/motion/Pitch_motion.h>
 #include <spring_motion/stiffness/model_by_name.h>
+#ifdef SPRING_MOTION_WITH_PETSC
+#include <spring_motion/internal/solver/petsc_solve.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
@@ -61,6 +64,7 @@ struct Deform_settings
   std::size_t every = 1;
   std::string report_path;
   bool quiet = false, force_progress = false;
+  bool petsc = false; // --backend petsc
 };
 
 const std::vector<Option_spec>& deform_options()
@@ -68,7 +72,7 @@ const std::vector<Option_spec>& deform_options()
   static const std::vector<Option_spec> specs{
     {"moving"}, {"fixed"}, {"sliding"}, {"pitch"}, {"center"}, {"axis"}, {"translate"}, {"displacement"}, {"steps"},
     {"model"}, {"solver"}, {"omega"}, {"tolerance"}, {"max-iterations"}, {"max-substep-halvings"},
-    {"threads"}, {"output", true, true}, {"every"}, {"report"}, {"quiet", false}, {"progress", false},
+    {"threads"}, {"backend"}, {"output", true, true}, {"every"}, {"report"}, {"quiet", false}, {"progress", false},
     {"help", false}};
   return specs;
 }
@@ -145,6 +149,17 @@ Deform_settings parse_deform(const Arguments& a)
       std::size_t(a.integer("max-iterations", (long long)s.options.solver.max_iterations, 1, 1000000000));
   s.options.max_substep_halvings = std::size_t(a.integer("max-substep-halvings", 0, 0, 20));
   s.options.solver.threads = int(a.integer("threads", 0, 0, 1024));
+  if(const auto backend = a.value("backend")) {
+    if(*backend == "petsc") {
+#ifdef SPRING_MOTION_WITH_PETSC
+      s.petsc = true;
+#else
+      throw Usage_error("--backend petsc: this spring-motion was built without PETSc; configure with "
+                        "-DSPRING_MOTION_WITH_PETSC=ON (docs/scaling.md)");
+#endif
+    } else if(*backend != "shared")
+      throw Usage_error("--backend: expected shared or petsc, found '" + *backend + "'");
+  }
 
   for(const std::string& path : a.values("output"))
     s.outputs.push_back(classify_output(path));
@@ -241,11 +256,76 @@ std::string summary_line(const Deform_report& r, const std::vector<Output_file>&
   return out.str();
 }
 
+#ifdef SPRING_MOTION_WITH_PETSC
+// The relative residual PETSc's CG stops at: its test is on the residual,
+// the built-in solver's on the error in length units, so it is set well
+// below --tolerance (the meshes' lengths are of order 1).
+double petsc_rtol(const Deform_settings& s) { return 1e-3 * s.options.solver.tolerance; }
+
+// Each step's system solved by PETSc (KSP CG + GAMG) on every rank of
+// PETSC_COMM_WORLD; every rank holds the whole mesh and runs the same step,
+// so the exact check and a rollback agree on all ranks (docs/scaling.md).
+template <int D>
+Solve_report petsc_solve(const Deform_settings& s, const Step_system_view<D>& view,
+                         std::vector<std::array<double, D>>& x)
+{
+  internal::Petsc_solve_report pr;
+  if(internal::petsc_solve_step_system<D>(PETSC_COMM_WORLD, view, petsc_rtol(s), x, pr) != 0)
+    throw Error("PETSc's solve of a step failed");
+  Solve_report r;
+  r.iterations = std::size_t(pr.iterations);
+  r.converged = pr.converged;
+  return r;
+}
+
+/// MPI and PETSc for the run (--backend petsc), finalized on the way out,
+/// also by an exception: every rank meets the same one, since every rank
+/// reads the same files and runs the same steps.
+struct Petsc_session
+{
+  explicit Petsc_session(bool on) : on_(on)
+  {
+    if(on_ && PetscInitializeNoArguments() != 0)
+      throw Error("PETSc failed to start");
+  }
+  ~Petsc_session()
+  {
+    if(on_)
+      PetscFinalize();
+  }
+  int rank() const
+  {
+    int r = 0;
+    if(on_)
+      MPI_Comm_rank(PETSC_COMM_WORLD, &r);
+    return r;
+  }
+  int ranks() const
+  {
+    int n = 1;
+    if(on_)
+      MPI_Comm_size(PETSC_COMM_WORLD, &n);
+    return n;
+  }
+  Petsc_session(const Petsc_session&) = delete;
+  Petsc_session& operator=(const Petsc_session&) = delete;
+
+private:
+  bool on_;
+};
+#endif
+
 template <int D, class Motion>
 int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Vertex_role> roles, const Motion& motion,
                std::ostream& out, std::ostream& err, bool err_is_terminal)
 {
   Network_deformer<D> deformer(setup.network, std::move(roles));
+#ifdef SPRING_MOTION_WITH_PETSC
+  if(s.petsc)
+    deformer.solve_override = [&s](const Step_system_view<D>& view, std::vector<std::array<double, D>>& x) {
+      return petsc_solve<D>(s, view, x);
+    };
+#endif
   Progress_bar bar(err, !s.quiet && (err_is_terminal || s.force_progress), s.options.number_of_steps);
   Run_context<D> context;
   context.settings = &s;
@@ -264,6 +344,11 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
     report = with_model(s.model, [&](const auto& model) {
       return deformer.run(motion, model, s.options, Command_visitor<D>{&context});
     });
+    report.backend = s.petsc ? "petsc" : "shared";
+#ifdef SPRING_MOTION_WITH_PETSC
+    if(s.petsc)
+      MPI_Comm_size(PETSC_COMM_WORLD, &report.ranks);
+#endif
     bar.clear();
     if(!report.completed) // the last valid state closes the series, whatever --every says
       for(auto& series : context.series)
@@ -392,7 +477,20 @@ int deform_command(const std::vector<std::string>& arguments, std::ostream& out,
     out << deform_help();
     return exit_success;
   }
-  const Deform_settings s = parse_deform(a);
+  Deform_settings s = parse_deform(a);
+#ifdef SPRING_MOTION_WITH_PETSC
+  const Petsc_session petsc(s.petsc);
+  std::ostringstream elsewhere;
+  if(petsc.rank() != 0) { // one rank writes and prints; every rank reports its errors
+    s.outputs.clear();
+    s.report_path.clear();
+    s.quiet = true;
+    s.force_progress = false;
+  }
+  std::ostream& out_here = petsc.rank() == 0 ? out : elsewhere;
+#else
+  std::ostream& out_here = out;
+#endif
   std::vector<std::string> inputs{s.mesh_path};
   if(!s.displacement_path.empty())
     inputs.push_back(s.displacement_path);
@@ -400,8 +498,8 @@ int deform_command(const std::vector<std::string>& arguments, std::ostream& out,
   const Mesh_file file = read_mesh(s.mesh_path);
   install_interrupt_handlers(); // from here on outputs may exist: Ctrl-C removes them
   if(file.dimension == 2)
-    return run_deform<2>(s, file, out, err, err_is_terminal);
-  return run_deform<3>(s, file, out, err, err_is_terminal);
+    return run_deform<2>(s, file, out_here, err, err_is_terminal);
+  return run_deform<3>(s, file, out_here, err, err_is_terminal);
 }
 
 } // namespace cli

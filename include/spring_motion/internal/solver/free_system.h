@@ -330,6 +330,15 @@ public:
     }
   }
 
+  /// Replaces the iterate by a solution computed elsewhere (one entry per
+  /// row, in the solver's order): Network_deformer::solve_override.
+  void set_solution(const std::vector<Row>& x)
+  {
+    SPRING_MOTION_CHECK(x.size() == x_.size(), "an outside solve returned " << x.size() << " rows for "
+                                                                             << x_.size());
+    x_ = x;
+  }
+
   /// Writes the solution into the free entries of x.
   void store(std::vector<Row>& x) const
   {

@@ -24,7 +24,7 @@ run() {
   local name=$1; shift
   local t0 t1
   t0=$(date +%s.%N)
-  "$@" --report "$work/r.json"
+  "$@" --report "$work/r.json" > /dev/null
   t1=$(date +%s.%N)
   /usr/bin/python3 - "$name" "$t0" "$t1" "$work/r.json" <<'PY'
 import json, sys

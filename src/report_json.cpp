@@ -113,6 +113,10 @@ void write_report_json(const Deform_report& r, std::ostream& out)
   Json j;
   j["format"] = "spring_motion.report/1";
   j["backend"] = Json{{"name", r.backend}, {"ranks", r.ranks}};
+  if(!r.rank_seconds_solve.empty()) {
+    j["backend"]["seconds_solve_per_rank"] = numbers(r.rank_seconds_solve);
+    j["backend"]["seconds_total_per_rank"] = numbers(r.rank_seconds_total);
+  }
   j["mesh"] = Json{{"dimension", r.dimension},
                    {"vertices", r.vertices},
                    {"elements", r.elements},

@@ -68,6 +68,9 @@ struct Deform_report
   /// "petsc" (the command line's --backend petsc), on how many MPI ranks
   std::string backend = "shared";
   int ranks = 1;
+  /// per MPI rank (petsc backend): the seconds its solves took (summed over
+  /// the steps, waiting in PETSc's collectives included) and its whole run
+  std::vector<double> rank_seconds_solve, rank_seconds_total;
   Model_description model;
   Motion_description motion;
   std::size_t number_of_steps = 0;

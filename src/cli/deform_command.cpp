@@ -346,8 +346,18 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
     });
     report.backend = s.petsc ? "petsc" : "shared";
 #ifdef SPRING_MOTION_WITH_PETSC
-    if(s.petsc)
+    if(s.petsc) {
       MPI_Comm_size(PETSC_COMM_WORLD, &report.ranks);
+      double mine[2] = {0, report.seconds_total};
+      for(const auto& step : report.steps)
+        mine[0] += step.seconds_solve;
+      std::vector<double> all(2 * std::size_t(report.ranks));
+      MPI_Gather(mine, 2, MPI_DOUBLE, all.data(), 2, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+      for(int r = 0; r < report.ranks; ++r) {
+        report.rank_seconds_solve.push_back(all[2 * std::size_t(r)]);
+        report.rank_seconds_total.push_back(all[2 * std::size_t(r) + 1]);
+      }
+    }
 #endif
     bar.clear();
     if(!report.completed) // the last valid state closes the series, whatever --every says

@@ -38,8 +38,11 @@ def main():
             sys.exit("exit status %d (shared) vs %d (petsc)" % (e0, e1))
         if o1.count("\n") != 1:
             sys.exit("expected one summary line from rank 0 only, got:\n" + o1)
-        if r1["backend"] != {"name": "petsc", "ranks": ranks}:
-            sys.exit("report backend %r" % r1["backend"])
+        b = r1["backend"]
+        if b["name"] != "petsc" or b["ranks"] != ranks or len(b["seconds_solve_per_rank"]) != ranks \
+                or len(b["seconds_total_per_rank"]) != ranks \
+                or not all(0 <= t <= u for t, u in zip(b["seconds_solve_per_rank"], b["seconds_total_per_rank"])):
+            sys.exit("report backend %r" % b)
         for k in ("completed",):
             if r0[k] != r1[k]:
                 sys.exit("%s: %r vs %r" % (k, r0[k], r1[k]))

@@ -38,14 +38,28 @@ struct Grid_scaled_stiffness
     double s = 0;
     for(std::size_t m = 0; m < n; ++m)
       s += internal::inverse_sin_squared(angles[m]);
-    const double l = length / reference_length;
-    const double lambda = internal::capped_quotient(ctx.longest_initial_edge, length);
-    return internal::capped_product(lambda, internal::capped_pow(l, -alpha_for(ctx.dimension)) +
-                                                internal::capped_pow(s, beta_for(ctx.dimension)));
+    return from_angle_sum(length, s, ctx);
+  }
+  double operator()(double length, Inverse_sin_squared angles, const Stiffness_context& ctx) const
+  {
+    double s = 0;
+    for(std::size_t m = 0; m < angles.size; ++m)
+      s += angles.values[m];
+    return from_angle_sum(length, s, ctx);
   }
   Model_description description(int dimension) const
   {
     return {"grid_scaled", {{"alpha", alpha_for(dimension)}, {"beta", beta_for(dimension)}, {"reference_length", reference_length}}};
+  }
+
+private:
+  // s = sum_m 1/sin^2 theta_m
+  double from_angle_sum(double length, double s, const Stiffness_context& ctx) const
+  {
+    const double l = length / reference_length;
+    const double lambda = internal::capped_quotient(ctx.longest_initial_edge, length);
+    return internal::capped_product(lambda, internal::capped_pow(l, -alpha_for(ctx.dimension)) +
+                                                internal::capped_pow(s, beta_for(ctx.dimension)));
   }
 };
 

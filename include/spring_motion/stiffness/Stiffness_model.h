@@ -43,6 +43,17 @@ struct Stiffness_context
   double longest_initial_edge = 1;
 };
 
+/// The angles around an edge given as 1/sin^2 of each (sin^2 floored at
+/// 1e-200, so a flat angle gives 1e200), in the order and of the kind the
+/// model's `angle_kind` names. Models whose stiffness reads the angles only
+/// through 1/sin^2 take this form: the assembly computes it from cross and
+/// dot products, without the trigonometry that computing the angles costs.
+struct Inverse_sin_squared
+{
+  const double* values = nullptr;
+  std::size_t size = 0;
+};
+
 /// A model's name and numeric parameters, for reports.
 struct Model_description
 {
@@ -56,6 +67,9 @@ struct Model_description
 /// double operator()(double length, const double* angles, std::size_t number_of_angles,
 ///                   const Stiffness_context&) const;   // >= 0 and finite
 /// Model_description description(int dimension) const;               // optional
+/// // optional: the same stiffness from 1/sin^2 of the angles, which the
+/// // assembly then prefers (it never computes the angles themselves)
+/// double operator()(double length, Inverse_sin_squared, const Stiffness_context&) const;
 /// \endcode
 /// Concept `ElementStiffnessModel` (torsional springs, ball-vertex springs)
 /// refines it with
@@ -77,6 +91,13 @@ template <class Model, class = void>
 struct Has_description : std::false_type {};
 template <class Model>
 struct Has_description<Model, std::void_t<decltype(std::declval<const Model&>().description(2))>> : std::true_type {};
+
+template <class Model, class = void>
+struct Reads_inverse_sin_squared : std::false_type {};
+template <class Model>
+struct Reads_inverse_sin_squared<Model, std::void_t<decltype(std::declval<const Model&>()(
+                                            1.0, Inverse_sin_squared{}, std::declval<const Stiffness_context&>()))>>
+    : std::true_type {};
 
 template <class Model, int D, class = void>
 struct Is_element_model : std::false_type {};

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <type_traits>
 
 namespace spring_motion {
 
@@ -34,6 +35,11 @@ struct With_ball_vertex
   double operator()(double length, const double* angles, std::size_t n, const Stiffness_context& ctx) const
   {
     return edge(length, angles, n, ctx);
+  }
+  template <class M = Edge_model, class = std::enable_if_t<internal::Reads_inverse_sin_squared<M>::value>>
+  double operator()(double length, Inverse_sin_squared angles, const Stiffness_context& ctx) const
+  {
+    return edge(length, angles, ctx);
   }
   Edge_spring_form edge_spring_form() const { return Edge_spring_form::along_edge; }
 

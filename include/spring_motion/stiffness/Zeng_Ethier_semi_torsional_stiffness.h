@@ -23,6 +23,13 @@ struct Zeng_Ethier_semi_torsional_stiffness
       s += internal::inverse_sin_squared(angles[m]);
     return internal::cap_stiffness(s);
   }
+  double operator()(double length, Inverse_sin_squared angles, const Stiffness_context&) const
+  {
+    double s = internal::capped_quotient(1.0, length);
+    for(std::size_t m = 0; m < angles.size; ++m)
+      s += angles.values[m];
+    return internal::cap_stiffness(s);
+  }
   Model_description description(int) const
   {
     return {"zeng_ethier", {{"dihedral_angles_3d", angles_3d == Angle_kind::element ? 1.0 : 0.0}}};

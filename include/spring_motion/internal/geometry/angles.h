@@ -110,6 +110,95 @@ inline std::array<double, 6> dihedral_angles(const std::array<std::array<double,
   return out;
 }
 
+/// 1/sin^2 of the triangle's angle at each vertex, as triangle_angles
+/// orders them, without trigonometry: sin^2 at vertex k is |u x w|^2 /
+/// (|u|^2 |w|^2) for the two edges u, w leaving it. The triangle is first
+/// scaled by its extent (angles do not change), so tiny or huge coordinates
+/// neither underflow nor overflow the fourth powers. sin^2 is floored at
+/// 1e-200 as in inverse_sin_squared(), so a flat triangle gives 1e200.
+template <int N>
+inline std::array<double, 3> triangle_inverse_sin_squared(const std::array<double, N>& p0,
+                                                          const std::array<double, N>& p1,
+                                                          const std::array<double, N>& p2)
+{
+  std::array<double, N> u = sub<N>(p1, p0), w = sub<N>(p2, p0);
+  double extent = 0;
+  for(int c = 0; c < N; ++c)
+    extent = std::max(extent, std::max(std::abs(u[c]), std::abs(w[c])));
+  constexpr double cap = 1e200;
+  if(extent == 0)
+    return {cap, cap, cap};
+  const double inv = 1.0 / extent;
+  for(int c = 0; c < N; ++c) {
+    u[c] *= inv;
+    w[c] *= inv;
+  }
+  double cross2;
+  if constexpr(N == 2) {
+    const double z = u[0] * w[1] - u[1] * w[0];
+    cross2 = z * z;
+  } else {
+    const auto n = cross(u, w);
+    cross2 = dot<3>(n, n);
+  }
+  const double uu = dot<N>(u, u), ww = dot<N>(w, w), vv = dot<N>(sub<N>(w, u), sub<N>(w, u));
+  // local edge k is opposite vertex k: vertex 0 lies on u and w, vertex 1 on
+  // u and w - u, vertex 2 on w and w - u
+  const std::array<double, 3> den{uu * ww, uu * vv, ww * vv};
+  std::array<double, 3> out;
+  for(int k = 0; k < 3; ++k)
+    out[std::size_t(k)] = (den[std::size_t(k)] > 0 && cross2 > 1e-200 * den[std::size_t(k)])
+                              ? den[std::size_t(k)] / cross2
+                              : cap;
+  return out;
+}
+
+/// 1/sin^2 of the tetrahedron's dihedral angle at each edge, in the order of
+/// dihedral_angles(), without trigonometry. With n_f the cross product of
+/// face f (|n_f| twice its area), V the volume and l the edge's length,
+/// V = 2 A_1 A_2 sin(theta) / (3 l) gives sin^2(theta) = (6V)^2 l^2 /
+/// (|n_1|^2 |n_2|^2): four cross products and one triple product per
+/// tetrahedron instead of six projections and six atan2. Scaled and floored
+/// as triangle_inverse_sin_squared().
+inline std::array<double, 6> dihedral_inverse_sin_squared(const std::array<std::array<double, 3>, 4>& p)
+{
+  using T = Simplex_tables<3>;
+  std::array<double, 3> a = sub<3>(p[1], p[0]), b = sub<3>(p[2], p[0]), c = sub<3>(p[3], p[0]);
+  double extent = 0;
+  for(int i = 0; i < 3; ++i)
+    extent = std::max({extent, std::abs(a[i]), std::abs(b[i]), std::abs(c[i])});
+  constexpr double cap = 1e200;
+  std::array<double, 6> out;
+  if(extent == 0) {
+    out.fill(cap);
+    return out;
+  }
+  const double inv = 1.0 / extent;
+  for(int i = 0; i < 3; ++i) {
+    a[i] *= inv;
+    b[i] *= inv;
+    c[i] *= inv;
+  }
+  const auto ab = cross(a, b), ac = cross(a, c), bc = cross(b, c);
+  const double det = dot<3>(a, bc);
+  // the face opposite vertex f: (1,2,3) is (b - a) x (c - a) = bc - ac + ab
+  std::array<double, 3> n0;
+  for(int i = 0; i < 3; ++i)
+    n0[i] = bc[i] - ac[i] + ab[i];
+  const std::array<double, 4> face2{dot<3>(n0, n0), dot<3>(bc, bc), dot<3>(ac, ac), dot<3>(ab, ab)};
+  const std::array<std::array<double, 3>, 4> q{{{0, 0, 0}, a, b, c}};
+  const double det2 = det * det;
+  for(int k = 0; k < 6; ++k) {
+    const double l2 = dot<3>(sub<3>(q[std::size_t(T::edge[k][1])], q[std::size_t(T::edge[k][0])]),
+                             sub<3>(q[std::size_t(T::edge[k][1])], q[std::size_t(T::edge[k][0])]));
+    // the two faces at edge k are those opposite its two other vertices
+    const double den = face2[std::size_t(T::other[k][0])] * face2[std::size_t(T::other[k][1])];
+    const double num = det2 * l2;
+    out[std::size_t(k)] = (den > 0 && num > 1e-200 * den) ? den / num : cap;
+  }
+  return out;
+}
+
 /// Signed area (2D) or volume (3D) of a simplex, positive when the vertices
 /// are counter-clockwise / positively oriented.
 inline double signed_measure(const std::array<std::array<double, 2>, 3>& p)

@@ -31,7 +31,20 @@ inline std::array<double, Spring_network<D>::edges_per_element> element_edge_ang
     return dihedral_angles(p);
 }
 
-/// Edge stiffness k_e of `model` at positions x. `angles` is scratch space.
+/// The same as 1/sin^2 of each, computed without trigonometry.
+template <int D>
+inline std::array<double, Spring_network<D>::edges_per_element> element_edge_inverse_sin_squared(
+    const std::array<std::array<double, D>, D + 1>& p)
+{
+  if constexpr(D == 2)
+    return triangle_inverse_sin_squared<2>(p[0], p[1], p[2]);
+  else
+    return dihedral_inverse_sin_squared(p);
+}
+
+/// Edge stiffness k_e of `model` at positions x. `angles` is scratch space:
+/// it holds the angles, or 1/sin^2 of them for a model that reads only that
+/// (Reads_inverse_sin_squared).
 /// Throws when the model returns a negative or non-finite value.
 ///
 /// The angles are computed element by element (or face by face) and stored
@@ -49,12 +62,18 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   const Angle_kind kind = model.angle_kind(D);
   const long m = long(net.number_of_elements());
   const bool by_face = (kind == Angle_kind::face && D == 3);
+  constexpr bool sines = Reads_inverse_sin_squared<Model>::value;
   if(kind != Angle_kind::none) {
     if(!by_face) {
       angles.resize(std::size_t(m) * E);
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
       for(long t = 0; t < m; ++t) {
-        const auto a = element_edge_angles<D>(element_points<D>(net.elements, x, std::size_t(t)));
+        const auto p = element_points<D>(net.elements, x, std::size_t(t));
+        std::array<double, E> a;
+        if constexpr(sines)
+          a = element_edge_inverse_sin_squared<D>(p);
+        else
+          a = element_edge_angles<D>(p);
         for(int j = 0; j < E; ++j)
           angles[slots.slot_position[std::size_t(t) * E + std::size_t(j)]] = a[std::size_t(j)];
       }
@@ -64,7 +83,11 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(nf)))
       for(long f = 0; f < nf; ++f) {
         const auto& F = slots.faces[std::size_t(f)];
-        const auto a = triangle_angles<3>(x[F[0]], x[F[1]], x[F[2]]);
+        std::array<double, 3> a;
+        if constexpr(sines)
+          a = triangle_inverse_sin_squared<3>(x[F[0]], x[F[1]], x[F[2]]);
+        else
+          a = triangle_angles<3>(x[F[0]], x[F[1]], x[F[2]]);
         for(int j = 0; j < 3; ++j)
           angles[slots.face_slot_position[3 * std::size_t(f) + std::size_t(j)]] = a[std::size_t(j)];
       }
@@ -86,7 +109,13 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
       na = off[std::size_t(e) + 1] - off[std::size_t(e)];
     }
     // a zero-length edge (coincident vertices) never reaches a model's 1/l
-    const double v = l > 0 ? model(l, a, na, ctx) : 0.0;
+    double v = 0.0;
+    if(l > 0) {
+      if constexpr(sines)
+        v = model(l, Inverse_sin_squared{a, na}, ctx);
+      else
+        v = model(l, a, na, ctx);
+    }
     k[std::size_t(e)] = v;
     if(l == 0)
       coincident = std::min(coincident, e);

@@ -1,0 +1,191 @@
+// 1/sin^2 of the element angles without trigonometry
+// (internal/geometry/angles.h), against the angles themselves, and the edge
+// models that read it against the same models fed with angles.
+#include <spring_motion/Spring_network.h>
+#include <spring_motion/internal/geometry/angles.h>
+#include <spring_motion/internal/geometry/capped_math.h>
+#include <spring_motion/internal/solver/assemble.h>
+#include <spring_motion/stiffness/Grid_scaled_stiffness.h>
+#include <spring_motion/stiffness/With_ball_vertex.h>
+#include <spring_motion/stiffness/Zeng_Ethier_semi_torsional_stiffness.h>
+
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cmath>
+#include <random>
+#include <vector>
+
+using namespace spring_motion;
+using namespace spring_motion::internal;
+
+namespace {
+
+using P2 = std::array<double, 2>;
+using P3 = std::array<double, 3>;
+
+bool close(double a, double b, double rel) { return std::abs(a - b) <= rel * std::abs(b); }
+
+std::array<double, 3> by_angles(const P2& a, const P2& b, const P2& c)
+{
+  const auto t = triangle_angles<2>(a, b, c);
+  return {inverse_sin_squared(t[0]), inverse_sin_squared(t[1]), inverse_sin_squared(t[2])};
+}
+std::array<double, 6> by_angles(const std::array<P3, 4>& p)
+{
+  const auto t = dihedral_angles(p);
+  std::array<double, 6> r;
+  for(std::size_t k = 0; k < 6; ++k)
+    r[k] = inverse_sin_squared(t[k]);
+  return r;
+}
+
+// An edge model that only takes angles: the assembly then computes angles
+// and this forwards them to `Base`'s angle form.
+template <class Base>
+struct Angles_only
+{
+  Base base;
+  Angle_kind angle_kind(int d) const { return base.angle_kind(d); }
+  double operator()(double l, const double* a, std::size_t n, const Stiffness_context& c) const
+  {
+    return base(l, a, n, c);
+  }
+};
+
+// The unit cube in six tetrahedra around its diagonal 0-7, its corners
+// moved at random by up to 0.15 (vertex i at the bits of i).
+Spring_network<3> perturbed_cube(unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(-0.15, 0.15);
+  std::vector<P3> p;
+  for(int i = 0; i < 8; ++i)
+    p.push_back({(i & 1) + d(rng), ((i >> 1) & 1) + d(rng), ((i >> 2) & 1) + d(rng)});
+  std::vector<std::array<Index, 4>> tets;
+  const int axes[6][3] = {{1, 2, 4}, {1, 4, 2}, {2, 1, 4}, {2, 4, 1}, {4, 1, 2}, {4, 2, 1}};
+  for(const auto& a : axes)
+    tets.push_back({0, Index(a[0]), Index(a[0] + a[1]), 7});
+  return make_spring_network<3>(p, tets);
+}
+
+template <class Model>
+std::vector<double> stiffness(const Spring_network<3>& net, const Model& model)
+{
+  std::vector<double> k, scratch;
+  compute_edge_stiffness(net, net.points, model, Stiffness_context{3, net.longest_initial_edge}, k, scratch, 1);
+  return k;
+}
+
+} // namespace
+
+TEST_CASE("inverse sin^2: triangles agree with 1/sin^2 of their angles", "[stiffness][angles]")
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> d(-1, 1);
+  for(int n = 0; n < 200; ++n) {
+    const P2 a{d(rng), d(rng)}, b{d(rng), d(rng)}, c{d(rng), d(rng)};
+    const auto fast = triangle_inverse_sin_squared<2>(a, b, c);
+    const auto ref = by_angles(a, b, c);
+    // an angle good to a few ulps gives 1/sin^2 to about ulp / sin^2
+    for(std::size_t k = 0; k < 3; ++k)
+      CHECK(close(fast[k], ref[k], 1e-12 * ref[k]));
+    // the same triangle embedded in a tilted plane of 3D
+    const auto in3 = [](const P2& q) { return P3{q[0], 0.6 * q[1], 0.8 * q[1]}; };
+    const auto fast3 = triangle_inverse_sin_squared<3>(in3(a), in3(b), in3(c));
+    for(std::size_t k = 0; k < 3; ++k)
+      CHECK(close(fast3[k], ref[k], 1e-12 * ref[k]));
+  }
+}
+
+TEST_CASE("inverse sin^2: tetrahedra agree with 1/sin^2 of their dihedral angles", "[stiffness][angles]")
+{
+  // the trirectangular corner by hand: right dihedral angles at the three
+  // edges from the corner, cos^2 = 1/3 (1/sin^2 = 3/2) at the others
+  const auto corner = dihedral_inverse_sin_squared({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}});
+  for(std::size_t k : {0, 1, 2})
+    CHECK(close(corner[k], 1.0, 1e-15));
+  for(std::size_t k : {3, 4, 5})
+    CHECK(close(corner[k], 1.5, 1e-15));
+
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> d(-1, 1);
+  for(int n = 0; n < 200; ++n) {
+    std::array<P3, 4> p;
+    for(auto& q : p)
+      q = {d(rng), d(rng), d(rng)};
+    const auto fast = dihedral_inverse_sin_squared(p);
+    const auto ref = by_angles(p);
+    for(std::size_t k = 0; k < 6; ++k)
+      CHECK(close(fast[k], ref[k], 1e-11 * ref[k]));
+  }
+}
+
+TEST_CASE("inverse sin^2: scale-free from 1e-150 to 1e150, slivers, flat and collapsed elements",
+          "[stiffness][angles]")
+{
+  const std::array<P3, 4> t{{{0.1, 0.2, 0.05}, {1.3, 0.1, -0.2}, {0.4, 1.1, 0.3}, {0.5, 0.4, 0.9}}};
+  const auto unit = dihedral_inverse_sin_squared(t);
+  for(double s : {1e-150, 1e150}) {
+    std::array<P3, 4> q = t;
+    for(auto& v : q)
+      for(double& c : v)
+        c *= s;
+    const auto scaled = dihedral_inverse_sin_squared(q);
+    for(std::size_t k = 0; k < 6; ++k)
+      CHECK(close(scaled[k], unit[k], 1e-13));
+    const auto tri = triangle_inverse_sin_squared<3>(q[0], q[1], q[2]);
+    const auto tri1 = triangle_inverse_sin_squared<3>(t[0], t[1], t[2]);
+    for(std::size_t k = 0; k < 3; ++k)
+      CHECK(close(tri[k], tri1[k], 1e-13));
+  }
+
+  // a sliver: the four corners of a unit square, two of them lifted by h.
+  // The dihedral angles at the diagonals 0-2 and 1-3 are close to pi, so
+  // sin is about 2h / (1/sqrt 2)... measured against the trigonometric path,
+  // both losing digits like 1/h
+  for(double h : {1e-4, 1e-7}) {
+    const std::array<P3, 4> s{{{0, 0, 0}, {1, 0, h}, {1, 1, 0}, {0, 1, h}}};
+    const auto fast = dihedral_inverse_sin_squared(s);
+    const auto ref = by_angles(s);
+    for(std::size_t k = 0; k < 6; ++k)
+      CHECK(close(fast[k], ref[k], 1e-14 / h));
+    CHECK(fast[1] > 0.1 / (h * h)); // edge 0-2: nearly flat
+  }
+
+  // flat and collapsed: the cap of inverse_sin_squared, never inf or NaN
+  const auto flat = dihedral_inverse_sin_squared({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}});
+  for(double v : flat)
+    CHECK(v == 1e200);
+  const auto point = dihedral_inverse_sin_squared({{{2, 2, 2}, {2, 2, 2}, {2, 2, 2}, {2, 2, 2}}});
+  for(double v : point)
+    CHECK(v == 1e200);
+  const auto line = triangle_inverse_sin_squared<2>({0, 0}, {1, 1}, {3, 3});
+  for(double v : line)
+    CHECK(v == 1e200);
+  const auto pair = triangle_inverse_sin_squared<2>({0, 0}, {0, 0}, {3, 1});
+  for(double v : pair)
+    CHECK(v == 1e200);
+}
+
+TEST_CASE("inverse sin^2: the models that read it give the stiffness of their angle form", "[stiffness][angles]")
+{
+  static_assert(Reads_inverse_sin_squared<Grid_scaled_stiffness>::value, "");
+  static_assert(Reads_inverse_sin_squared<Zeng_Ethier_semi_torsional_stiffness>::value, "");
+  static_assert(Reads_inverse_sin_squared<With_ball_vertex<Grid_scaled_stiffness>>::value, "");
+  static_assert(!Reads_inverse_sin_squared<Angles_only<Grid_scaled_stiffness>>::value, "");
+  for(unsigned seed : {1u, 2u, 3u}) {
+    const auto net = perturbed_cube(seed);
+    const auto check = [&](const auto& model, double rel) {
+      const auto fast = stiffness(net, model);
+      const auto ref = stiffness(net, Angles_only<std::decay_t<decltype(model)>>{model});
+      REQUIRE(fast.size() == ref.size());
+      for(std::size_t e = 0; e < fast.size(); ++e)
+        CHECK(close(fast[e], ref[e], rel));
+    };
+    // (sum 1/sin^2)^3 triples the relative error of the sum
+    check(Grid_scaled_stiffness{}, 1e-11);
+    check(Zeng_Ethier_semi_torsional_stiffness{}, 1e-12);
+    check(Zeng_Ethier_semi_torsional_stiffness{Angle_kind::element}, 1e-12);
+  }
+}

@@ -18,6 +18,7 @@
 // written to Medit files: whole-process time, peak memory, and the wing with
 // two CPU-bound processes beside it (default threads against one thread).
 // Progress goes to stderr, the tables to stdout.
+#include <spring_motion/io/write_mesh.h>
 #include <spring_motion/spring_motion.h>
 #include <naca0012/Naca0012_mesh_2.h>
 #if __has_include(<naca0012/Naca0012_wing_mesh_3.h>)

@@ -3,8 +3,10 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <random>
 #include <vector>
 
 using namespace spring_motion;
@@ -131,4 +133,59 @@ TEST_CASE("element_skewness: smallest angles of known triangles and tetrahedra",
   flat[7] = {10.3, 0.3, 0};
   element_skewness(tet, flat, 1, &a3);
   CHECK(a3[1] < 1e-12);
+}
+
+// element_skewness reads only the extreme angles (two atan2 per element); they
+// must be the very numbers the full angle lists give, on random elements of
+// every shape (needles, caps, slivers) and on degenerate ones.
+TEST_CASE("angle ranges: the extremes of the full angle lists, for two atan2 per element", "[skewness][angles]")
+{
+  namespace si = spring_motion::internal;
+  std::mt19937_64 rng(20261125);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> squash(0, 3);
+  for(int trial = 0; trial < 20000; ++trial) {
+    // a random simplex, one of its coordinates often squashed towards a plane
+    const double f = std::pow(10.0, -3 * squash(rng));
+    std::array<std::array<double, 3>, 4> p;
+    for(auto& q : p)
+      q = {u(rng), u(rng), f * u(rng)};
+    const auto all3 = si::dihedral_angles(p);
+    const auto r3 = si::dihedral_angle_range(p);
+    const auto mm3 = std::minmax_element(all3.begin(), all3.end());
+    // equal, or (two angles equal to rounding) within a rounding error
+    CHECK(r3[0] == Approx(*mm3.first).margin(1e-14).epsilon(1e-13));
+    CHECK(r3[1] == Approx(*mm3.second).margin(1e-14).epsilon(1e-13));
+    CHECK((std::find(all3.begin(), all3.end(), r3[0]) != all3.end()));
+    CHECK((std::find(all3.begin(), all3.end(), r3[1]) != all3.end()));
+
+    const std::array<double, 2> a{p[0][0], f * p[0][1]}, b{p[1][0], f * p[1][1]}, c{p[2][0], f * p[2][1]};
+    const auto all2 = si::triangle_angles<2>(a, b, c);
+    const auto r2 = si::triangle_angle_range<2>(a, b, c);
+    const auto mm2 = std::minmax_element(all2.begin(), all2.end());
+    CHECK(r2[0] == Approx(*mm2.first).margin(1e-14).epsilon(1e-13));
+    CHECK(r2[1] == Approx(*mm2.second).margin(1e-14).epsilon(1e-13));
+    CHECK((std::find(all2.begin(), all2.end(), r2[0]) != all2.end()));
+    CHECK((std::find(all2.begin(), all2.end(), r2[1]) != all2.end()));
+  }
+  // degenerate: coincident vertices (angles 0 by atan2(0, 0)), collinear, flat
+  const std::array<double, 2> o{0, 0}, x1{1, 0}, x2{2, 0};
+  CHECK(si::triangle_angle_range<2>(o, o, x1) == (std::array<double, 2>{0, 0}));
+  CHECK(si::triangle_angle_range<2>(o, x1, x2) == (std::array<double, 2>{0, si::pi}));
+  const std::array<std::array<double, 3>, 4> flat{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}};
+  const auto all = si::dihedral_angles(flat);
+  const auto mm = std::minmax_element(all.begin(), all.end());
+  CHECK(si::dihedral_angle_range(flat) == (std::array<double, 2>{*mm.first, *mm.second}));
+  const std::array<std::array<double, 3>, 4> pinched{{{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  // its edge of length 0 has no orthogonal plane: not a number, as in the full list
+  const auto allp = si::dihedral_angles(pinched);
+  REQUIRE(std::any_of(allp.begin(), allp.end(), [](double v) { return std::isnan(v); }));
+  const auto rp = si::dihedral_angle_range(pinched);
+  CHECK(std::isnan(rp[0]));
+  CHECK(std::isnan(rp[1]));
+  // a coordinate that is not a number makes both extremes not a number
+  const std::array<double, 2> bad{std::nan(""), 0};
+  const auto rn = si::triangle_angle_range<2>(o, x1, bad);
+  CHECK(std::isnan(rn[0]));
+  CHECK(std::isnan(rn[1]));
 }

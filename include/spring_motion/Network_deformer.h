@@ -26,6 +26,8 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace spring_motion {
@@ -76,6 +78,11 @@ public:
                                                 << (unreached.empty() ? 0 : unreached.front())
                                                 << ") are connected to no constrained vertex: "
                                                    "their displacement is undetermined (singular system)");
+    // a product with a normal power of two rounds as ldexp does, at a
+    // fraction of its cost; exponents whose power is not normal keep ldexp
+    const double longest = net_.longest_initial_edge;
+    measure_exponent_ = longest > 0 && std::isfinite(longest) ? -std::ilogb(longest) : 0;
+    measure_scale_ = std::abs(measure_exponent_) <= 1000 ? std::ldexp(1.0, measure_exponent_) : 0.0;
     initial_measure_.resize(net_.number_of_elements());
     touches_moving_.assign(net_.number_of_elements(), 0);
     for(std::size_t t = 0; t < net_.number_of_elements(); ++t) {
@@ -194,8 +201,7 @@ public:
     rep.quality_all = skewness_histogram(r, [](std::size_t) { return true; });
     rep.quality_moving = skewness_histogram(r, [&](std::size_t t) { return touches_moving_[t] != 0; });
     smallest_angles(min_angle, rep.min_angle_deg_moving, rep.min_angle_deg_all);
-    rep.min_size_ratio = min_size_ratio(options.solver.threads);
-    rep.max_size_ratio = max_size_ratio(options.solver.threads);
+    std::tie(rep.min_size_ratio, rep.max_size_ratio) = size_ratio_range(options.solver.threads);
     rep.seconds_total = seconds_since(start);
     return rep;
   }
@@ -261,25 +267,25 @@ public:
   const std::vector<std::size_t>& last_inverted_elements() const { return last_inverted_; }
 
   /// min over elements of (current measure / initial measure)
-  double min_size_ratio(int threads = 0) const
-  {
-    const long m = long(net_.number_of_elements());
-    double mn = std::numeric_limits<double>::infinity();
-#pragma omp parallel for reduction(min : mn) schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
-    for(long t = 0; t < m; ++t)
-      mn = std::min(mn, scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)]);
-    return mn;
-  }
+  double min_size_ratio(int threads = 0) const { return size_ratio_range(threads).first; }
 
   /// max over elements of (current measure / initial measure)
-  double max_size_ratio(int threads = 0) const
+  double max_size_ratio(int threads = 0) const { return size_ratio_range(threads).second; }
+
+  /// (min, max) over elements of (current measure / initial measure), in one
+  /// pass over the elements
+  std::pair<double, double> size_ratio_range(int threads = 0) const
   {
     const long m = long(net_.number_of_elements());
-    double mx = -std::numeric_limits<double>::infinity();
-#pragma omp parallel for reduction(max : mx) schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
-    for(long t = 0; t < m; ++t)
-      mx = std::max(mx, scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)]);
-    return mx;
+    double mn = std::numeric_limits<double>::infinity(), mx = -mn;
+#pragma omp parallel for reduction(min : mn) reduction(max : mx) schedule(static) \
+    num_threads(internal::thread_count(threads, std::size_t(m)))
+    for(long t = 0; t < m; ++t) {
+      const double r = scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)];
+      mn = std::min(mn, r);
+      mx = std::max(mx, r);
+    }
+    return {mn, mx};
   }
 
 private:
@@ -296,10 +302,9 @@ private:
   double scaled_measure(const std::vector<Point>& x, std::size_t t) const
   {
     auto p = internal::element_points<D>(net_.elements, x, t);
-    const int e = -std::ilogb(net_.longest_initial_edge);
     for(auto& q : p)
       for(auto& c : q)
-        c = std::ldexp(c, e);
+        c = measure_scale_ != 0 ? c * measure_scale_ : std::ldexp(c, measure_exponent_);
     return internal::signed_measure(p);
   }
 
@@ -324,8 +329,7 @@ private:
       if(touches_moving_[t])
         s.max_skewness_moving = std::max(s.max_skewness_moving, r[t]);
     smallest_angles(min_angle, s.min_angle_deg_moving, s.min_angle_deg_all);
-    s.min_size_ratio = min_size_ratio(threads);
-    s.max_size_ratio = max_size_ratio(threads);
+    std::tie(s.min_size_ratio, s.max_size_ratio) = size_ratio_range(threads);
   }
 
   struct Attempt
@@ -513,6 +517,9 @@ private:
   } history_;
   Orientation_record record_;
   std::vector<double> initial_measure_;
+  // scaled_measure(): coordinates times 2^measure_exponent_ (measure_scale_ when that is normal, else 0)
+  int measure_exponent_ = 0;
+  double measure_scale_ = 0;
   std::vector<char> touches_moving_;
   std::vector<double> stiffness_, angle_scratch_;
   // the solver state: ordering, pattern and multigrid aggregates, rebuilt

@@ -80,19 +80,16 @@ std::vector<double> element_skewness(const Spring_network<D>& net, const std::ve
 #pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
   for(long t = 0; t < m; ++t) {
     const auto& e = net.elements[std::size_t(t)];
+    // skewness and the smallest angle need only the extreme angles
     const auto a = [&] {
       if constexpr(D == 2)
-        return internal::triangle_angles<2>(x[e[0]], x[e[1]], x[e[2]]);
+        return internal::triangle_angle_range<2>(x[e[0]], x[e[1]], x[e[2]]);
       else
-        return internal::dihedral_angles({x[e[0]], x[e[1]], x[e[2]], x[e[3]]});
+        return internal::dihedral_angle_range({x[e[0]], x[e[1]], x[e[2]], x[e[3]]});
     }();
     r[std::size_t(t)] = equiangle_skewness_from_angles(a.data(), a.size(), D);
-    if(min_angle_deg) {
-      double smallest = internal::pi;
-      for(double v : a)
-        smallest = std::isfinite(v) ? std::min(smallest, v) : 0.0;
-      (*min_angle_deg)[std::size_t(t)] = smallest * (180 / internal::pi);
-    }
+    if(min_angle_deg)
+      (*min_angle_deg)[std::size_t(t)] = std::isfinite(a[0]) ? std::min(internal::pi, a[0]) * (180 / internal::pi) : 0.0;
   }
   return r;
 }

@@ -76,15 +76,75 @@ inline double angle_between(const std::array<double, 3>& u, const std::array<dou
   return std::atan2(norm<3>(cross(u, v)), dot<3>(u, v));
 }
 
+/// The smallest and the largest of some angles; both not a number if one is.
+template <std::size_t M>
+inline std::array<double, 2> extremes(const std::array<double, M>& a)
+{
+  for(double v : a)
+    if(std::isnan(v))
+      return {v, v};
+  const auto mm = std::minmax_element(a.begin(), a.end());
+  return {*mm.first, *mm.second};
+}
+
+/// The interior angle of triangle (p0, p1, p2) at its vertex k.
+template <int N>
+inline double triangle_angle(int k, const std::array<double, N>& p0, const std::array<double, N>& p1,
+                             const std::array<double, N>& p2)
+{
+  if(k == 0)
+    return angle_between(sub<N>(p1, p0), sub<N>(p2, p0));
+  if(k == 1)
+    return angle_between(sub<N>(p0, p1), sub<N>(p2, p1));
+  return angle_between(sub<N>(p0, p2), sub<N>(p1, p2));
+}
+
 /// Interior angles of triangle (p0, p1, p2) at each vertex; angle k faces the
 /// triangle's local edge k (Simplex_tables<2>).
 template <int N>
 inline std::array<double, 3> triangle_angles(const std::array<double, N>& p0, const std::array<double, N>& p1,
                                              const std::array<double, N>& p2)
 {
-  const double a0 = angle_between(sub<N>(p1, p0), sub<N>(p2, p0));
-  const double a1 = angle_between(sub<N>(p0, p1), sub<N>(p2, p1));
-  return {a0, a1, angle_between(sub<N>(p0, p2), sub<N>(p1, p2))};
+  return {triangle_angle<N>(0, p0, p1, p2), triangle_angle<N>(1, p0, p1, p2), triangle_angle<N>(2, p0, p1, p2)};
+}
+
+/// The smallest and the largest of triangle_angles(), each the same number
+/// that function gives, for two atan2 instead of three: by the law of sines
+/// the angles are ordered as the lengths of the edges facing them. (Two
+/// angles that differ by a rounding error may swap; the value reported then
+/// differs by that error.) Non-finite coordinates take the full path.
+template <int N>
+inline std::array<double, 2> triangle_angle_range(const std::array<double, N>& p0, const std::array<double, N>& p1,
+                                                  const std::array<double, N>& p2)
+{
+  const std::array<double, 3> facing{dot<N>(sub<N>(p1, p2), sub<N>(p1, p2)), dot<N>(sub<N>(p0, p2), sub<N>(p0, p2)),
+                                     dot<N>(sub<N>(p0, p1), sub<N>(p0, p1))};
+  if(!std::isfinite(facing[0] + facing[1] + facing[2])) {
+    const auto a = triangle_angles<N>(p0, p1, p2);
+    return extremes(a);
+  }
+  const auto mm = std::minmax_element(facing.begin(), facing.end());
+  return {triangle_angle<N>(int(mm.first - facing.begin()), p0, p1, p2),
+          triangle_angle<N>(int(mm.second - facing.begin()), p0, p1, p2)};
+}
+
+/// The projections u, w of tetrahedron p's two vertices off its local edge k
+/// onto the plane orthogonal to that edge: the dihedral angle at the edge is
+/// the angle between them.
+inline void dihedral_projections(const std::array<std::array<double, 3>, 4>& p, int k, std::array<double, 3>& u,
+                                 std::array<double, 3>& w)
+{
+  using T = Simplex_tables<3>;
+  const auto& a = p[T::edge[k][0]];
+  const auto e = sub<3>(p[T::edge[k][1]], a);
+  const double ee = dot<3>(e, e);
+  u = sub<3>(p[T::other[k][0]], a);
+  w = sub<3>(p[T::other[k][1]], a);
+  const double su = dot<3>(u, e) / ee, sw = dot<3>(w, e) / ee;
+  for(int c = 0; c < 3; ++c) {
+    u[c] -= su * e[c];
+    w[c] -= sw * e[c];
+  }
 }
 
 /// Interior dihedral angles of tetrahedron p at its six edges, in the local
@@ -92,22 +152,54 @@ inline std::array<double, 3> triangle_angles(const std::array<double, N>& p0, co
 /// two other vertices onto the plane orthogonal to the edge.
 inline std::array<double, 6> dihedral_angles(const std::array<std::array<double, 3>, 4>& p)
 {
-  using T = Simplex_tables<3>;
   std::array<double, 6> out;
+  std::array<double, 3> u, w;
   for(int k = 0; k < 6; ++k) {
-    const auto& a = p[T::edge[k][0]];
-    const auto e = sub<3>(p[T::edge[k][1]], a);
-    const double ee = dot<3>(e, e);
-    auto u = sub<3>(p[T::other[k][0]], a);
-    auto w = sub<3>(p[T::other[k][1]], a);
-    const double su = dot<3>(u, e) / ee, sw = dot<3>(w, e) / ee;
-    for(int c = 0; c < 3; ++c) {
-      u[c] -= su * e[c];
-      w[c] -= sw * e[c];
-    }
-    out[k] = angle_between(u, w);
+    dihedral_projections(p, k, u, w);
+    out[std::size_t(k)] = angle_between(u, w);
   }
   return out;
+}
+
+/// The smallest and the largest of dihedral_angles(), each the same number
+/// that function gives, for two atan2 instead of six. Each angle is
+/// atan2(s, c) with s = |u x w| >= 0 and c = u.w; they are ranked without
+/// trigonometry by the side of pi/2 they lie on (the sign of c) and, within
+/// it, by s / (s + |c|), which grows with the angle below pi/2 and shrinks
+/// above, and keeps its relative accuracy near 0 and near pi (where a cosine
+/// cannot tell the angles of a sliver apart). Angles that differ by a
+/// rounding error may swap, as in triangle_angle_range(). A ratio that is
+/// not a number (a degenerate edge or projection, non-finite coordinates)
+/// takes the full path.
+inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<double, 3>, 4>& p)
+{
+  std::array<double, 6> sine, cosine, key;
+  std::array<bool, 6> obtuse;
+  std::array<double, 3> u, w;
+  bool finite = true;
+  for(std::size_t k = 0; k < 6; ++k) {
+    dihedral_projections(p, int(k), u, w);
+    sine[k] = norm<3>(cross(u, w));
+    cosine[k] = dot<3>(u, w);
+    obtuse[k] = cosine[k] < 0;
+    key[k] = sine[k] / (sine[k] + std::abs(cosine[k]));
+    finite = finite && std::isfinite(key[k]);
+  }
+  if(!finite)
+    return extremes(dihedral_angles(p));
+  const auto less = [&](std::size_t a, std::size_t b) {
+    if(obtuse[a] != obtuse[b])
+      return obtuse[b];
+    return obtuse[a] ? key[a] > key[b] : key[a] < key[b];
+  };
+  std::size_t lo = 0, hi = 0;
+  for(std::size_t k = 1; k < 6; ++k) {
+    if(less(k, lo))
+      lo = k;
+    if(less(hi, k))
+      hi = k;
+  }
+  return {std::atan2(sine[lo], cosine[lo]), std::atan2(sine[hi], cosine[hi])};
 }
 
 /// 1/sin^2 of the triangle's angle at each vertex, as triangle_angles

@@ -92,11 +92,15 @@ TEST_CASE("3D angles: around the edges of a Triangulation_3 the dihedral angles 
       angle_of_slot[t * 6 + k] = a[k];
   }
   const internal::Angle_slots& slots = internal::angle_slots(net);
+  // into the edge-major order, as the assembly scatters them
+  std::vector<double> angle_at(angle_of_slot.size());
+  for(std::size_t slot = 0; slot < angle_of_slot.size(); ++slot)
+    angle_at[slots.slot_position[slot]] = angle_of_slot[slot];
   int interior = 0, cube_edges = 0, diagonals = 0;
   for(std::size_t e = 0; e < net.number_of_edges(); ++e) {
     double sum = 0;
     for(Index s = slots.edge_slot_offsets[e]; s < slots.edge_slot_offsets[e + 1]; ++s)
-      sum += angle_of_slot[slots.edge_slots[s]];
+      sum += angle_at[s];
     const auto& a = net.points[net.edges[e][0]];
     const auto& b = net.points[net.edges[e][1]];
     const double l2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
@@ -111,7 +115,8 @@ TEST_CASE("3D angles: around the edges of a Triangulation_3 the dihedral angles 
   // faces: the 12 boundary triangles and one (centre, a, b) per boundary edge
   // a-b (12 cube edges + 6 diagonals); each face lists its three edges
   CHECK(slots.faces.size() == 12 + 18);
-  CHECK(slots.edge_face_slots.size() == 3 * slots.faces.size());
+  CHECK(slots.face_slot_position.size() == 3 * slots.faces.size());
+  CHECK(slots.edge_face_slot_offsets.back() == 3 * slots.faces.size());
 }
 
 TEST_CASE("3D validity: exact orientation flags the flipped and the flat tetrahedron", "[validity][3d]")

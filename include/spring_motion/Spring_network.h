@@ -124,7 +124,6 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
       return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.slot < y.slot);
     });
     net.element_edges.resize(m * E);
-    tab.edge_slots.resize(recs.size());
     tab.slot_position.resize(recs.size());
     for(std::size_t r = 0; r < recs.size(); ++r) {
       if(r == 0 || recs[r].a != recs[r - 1].a || recs[r].b != recs[r - 1].b) {
@@ -132,7 +131,6 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
         tab.edge_slot_offsets.push_back(Index(r));
       }
       net.element_edges[recs[r].slot] = Index(net.edges.size() - 1);
-      tab.edge_slots[r] = recs[r].slot;
       tab.slot_position[recs[r].slot] = Index(r);
     }
     tab.edge_slot_offsets.push_back(Index(recs.size()));
@@ -238,11 +236,9 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
       }
     std::sort(recs.begin(), recs.end());
     tab.edge_face_slot_offsets.assign(net.edges.size() + 1, 0);
-    tab.edge_face_slots.resize(recs.size());
     tab.face_slot_position.resize(recs.size());
     for(std::size_t r = 0; r < recs.size(); ++r) {
       ++tab.edge_face_slot_offsets[recs[r].first + 1];
-      tab.edge_face_slots[r] = recs[r].second;
       tab.face_slot_position[recs[r].second] = Index(r);
     }
     for(std::size_t e = 0; e < net.edges.size(); ++e)

@@ -193,7 +193,7 @@ Input_error file_error(const Mesh_setup<D>& setup, const Error& error)
       // the library names the vertex "vertex <network index>": the file's number replaces it
       std::ostringstream named;
       named << "vertex " << setup.vertex_number(Index(v->vertex())) << " at "
-            << point_text<D>(setup.network.points[v->vertex()]);
+            << point_text<D>(setup.mesh->points[setup.file_vertex[v->vertex()]]);
       const std::string network_name = "vertex " + std::to_string(v->vertex());
       for(std::size_t at = message.find(network_name); at != std::string::npos;
           at = message.find(network_name, at + 1)) {

@@ -51,6 +51,9 @@ struct Mesh_setup
   std::string path;
   const Mesh_file* file = nullptr;
   const Indexed_mesh<D>* mesh = nullptr;
+  /// Built here, then moved into the Network_deformer that runs the motion
+  /// (one copy of the network in memory): after that, only the maps and the
+  /// file describe the mesh.
   Spring_network<D> network;
   std::vector<std::uint32_t> file_vertex;   ///< network vertex -> vertex index in the file's arrays
   std::vector<Index> network_vertex;        ///< file vertex index -> network vertex (no_vertex when unused)

@@ -319,7 +319,7 @@ template <int D, class Motion>
 int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Vertex_role> roles, const Motion& motion,
                std::ostream& out, std::ostream& err, bool err_is_terminal)
 {
-  Network_deformer<D> deformer(setup.network, std::move(roles));
+  Network_deformer<D> deformer(std::move(setup.network), std::move(roles));
 #ifdef SPRING_MOTION_WITH_PETSC
   if(s.petsc)
     deformer.solve_override = [&s](const Step_system_view<D>& view, std::vector<std::array<double, D>>& x) {

@@ -9,6 +9,7 @@
 #include <spring_motion/validity.h>
 
 #include <iterator>
+#include <utility>
 #include <vector>
 
 namespace spring_motion {
@@ -45,8 +46,12 @@ void motion_data_arrays(const Spring_network<D>& net, const std::vector<typename
   find_inverted_elements(net, x, record, std::back_inserter(bad));
   for(std::size_t t : bad)
     valid.values[t] = 0.0;
-  point_data = {disp};
-  cell_data = {r, valid};
+  // moved, not copied (an initializer list would copy each array)
+  point_data.clear();
+  point_data.push_back(std::move(disp));
+  cell_data.clear();
+  cell_data.push_back(std::move(r));
+  cell_data.push_back(std::move(valid));
 }
 
 } // namespace spring_motion

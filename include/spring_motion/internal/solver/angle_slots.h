@@ -19,15 +19,18 @@ namespace internal {
 struct Angle_slots
 {
   using Index = std::uint32_t;
-  // edge -> the (element, local edge) slots around it, as element * edges_per_element + local;
-  // slot_position inverts edge_slots (slot -> its index there)
-  std::vector<Index> edge_slot_offsets, edge_slots, slot_position;
+  // slot (element * edges_per_element + local edge) -> its position in the
+  // edge-major order, where the slots of edge e are positions
+  // edge_slot_offsets[e] .. edge_slot_offsets[e + 1] - 1. The inverse map
+  // is not kept: the assembly only scatters into that order.
+  std::vector<Index> edge_slot_offsets, slot_position;
 
   // 3D only: the unique triangular faces, their edges (local edge k opposite
-  // local vertex k) and edge -> (face, local) slots as face * 3 + local.
+  // local vertex k) and the same edge-major order for the face slots
+  // (face * 3 + local).
   std::vector<std::array<Index, 3>> faces;
   std::vector<Index> face_edges;
-  std::vector<Index> edge_face_slot_offsets, edge_face_slots, face_slot_position;
+  std::vector<Index> edge_face_slot_offsets, face_slot_position;
 };
 
 /// The one door to a network's angle slots (the builder fills them, the

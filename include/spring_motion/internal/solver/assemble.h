@@ -48,7 +48,7 @@ inline std::array<double, Spring_network<D>::edges_per_element> element_edge_inv
 /// Throws when the model returns a negative or non-finite value.
 ///
 /// The angles are computed element by element (or face by face) and stored
-/// edge by edge, at their slot's position in edge_slots: the edge loop then
+/// edge by edge, at their slot's position in the edge-major order: the edge loop then
 /// reads each edge's angles as one contiguous run. Read element by element
 /// instead, the angles of an edge lie far apart, and on the wing that gather
 /// cost more than computing them.

@@ -319,17 +319,33 @@ private:
     }
   }
 
+  // The step's extremes in one pass over the elements, nothing stored per
+  // element: the same numbers as element_skewness() and size_ratio_range().
   void step_quality(Step_report& s, int threads) const
   {
-    std::vector<double> min_angle;
-    const auto r = element_skewness(net_, positions_, threads, &min_angle);
-    s.max_skewness_all = *std::max_element(r.begin(), r.end());
-    s.max_skewness_moving = 0;
-    for(std::size_t t = 0; t < r.size(); ++t)
-      if(touches_moving_[t])
-        s.max_skewness_moving = std::max(s.max_skewness_moving, r[t]);
-    smallest_angles(min_angle, s.min_angle_deg_moving, s.min_angle_deg_all);
-    std::tie(s.min_size_ratio, s.max_size_ratio) = size_ratio_range(threads);
+    const long m = long(net_.number_of_elements());
+    double r_all = 0, r_moving = 0, a_all = 180, a_moving = 180;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+#pragma omp parallel for schedule(static) reduction(max : r_all, r_moving, hi) reduction(min : a_all, a_moving, lo) \
+    num_threads(internal::thread_count(threads, std::size_t(m)))
+    for(long t = 0; t < m; ++t) {
+      const auto q = internal::skewness_and_smallest_angle(net_, positions_, std::size_t(t));
+      r_all = std::max(r_all, q[0]);
+      a_all = std::min(a_all, q[1]);
+      if(touches_moving_[std::size_t(t)]) {
+        r_moving = std::max(r_moving, q[0]);
+        a_moving = std::min(a_moving, q[1]);
+      }
+      const double ratio = scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)];
+      lo = std::min(lo, ratio);
+      hi = std::max(hi, ratio);
+    }
+    s.max_skewness_all = r_all;
+    s.max_skewness_moving = r_moving;
+    s.min_angle_deg_all = a_all;
+    s.min_angle_deg_moving = a_moving;
+    s.min_size_ratio = lo;
+    s.max_size_ratio = hi;
   }
 
   struct Attempt

@@ -64,6 +64,26 @@ struct Skewness_histogram
   double max = 0;
 };
 
+namespace internal {
+/// R of element t at positions x and its smallest angle in degrees (2D:
+/// interior angles; 3D: dihedral angles), both from the two extreme angles
+/// only; an angle that is not a number gives R = 1 and a smallest angle of 0.
+template <int D>
+std::array<double, 2> skewness_and_smallest_angle(const Spring_network<D>& net,
+                                                  const std::vector<typename Spring_network<D>::Point>& x, std::size_t t)
+{
+  const auto& e = net.elements[t];
+  const auto a = [&] {
+    if constexpr(D == 2)
+      return triangle_angle_range<2>(x[e[0]], x[e[1]], x[e[2]]);
+    else
+      return dihedral_angle_range({x[e[0]], x[e[1]], x[e[2]], x[e[3]]});
+  }();
+  return {equiangle_skewness_from_angles(a.data(), a.size(), D),
+          std::isfinite(a[0]) ? std::min(pi, a[0]) * (180 / pi) : 0.0};
+}
+} // namespace internal
+
 /// R of every element of the network at positions x. With `min_angle_deg`,
 /// also each element's smallest angle in degrees from the same angles
 /// (2D: interior angles; 3D: dihedral angles, which go to zero when a
@@ -79,17 +99,10 @@ std::vector<double> element_skewness(const Spring_network<D>& net, const std::ve
     min_angle_deg->resize(std::size_t(m));
 #pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
   for(long t = 0; t < m; ++t) {
-    const auto& e = net.elements[std::size_t(t)];
-    // skewness and the smallest angle need only the extreme angles
-    const auto a = [&] {
-      if constexpr(D == 2)
-        return internal::triangle_angle_range<2>(x[e[0]], x[e[1]], x[e[2]]);
-      else
-        return internal::dihedral_angle_range({x[e[0]], x[e[1]], x[e[2]], x[e[3]]});
-    }();
-    r[std::size_t(t)] = equiangle_skewness_from_angles(a.data(), a.size(), D);
+    const auto q = internal::skewness_and_smallest_angle(net, x, std::size_t(t));
+    r[std::size_t(t)] = q[0];
     if(min_angle_deg)
-      (*min_angle_deg)[std::size_t(t)] = std::isfinite(a[0]) ? std::min(internal::pi, a[0]) * (180 / internal::pi) : 0.0;
+      (*min_angle_deg)[std::size_t(t)] = q[1];
   }
   return r;
 }

@@ -161,36 +161,64 @@ inline std::array<double, 6> dihedral_angles(const std::array<std::array<double,
   return out;
 }
 
-/// The smallest and the largest of dihedral_angles(), each the same number
-/// that function gives, for two atan2 instead of six. Each angle is
-/// atan2(s, c) with s = |u x w| >= 0 and c = u.w; they are ranked without
+/// The smallest and the largest of dihedral_angles(), for two atan2 instead
+/// of six and no projections. With g_i the gradient of 6V with respect to
+/// vertex i (the cross product of face i's edges: twice its area times its
+/// normal, all four inward or all four outward), the angle at the edge of
+/// length l between faces i and j has sin = 6V l / (|g_i| |g_j|) and
+/// cos = -g_i . g_j / (|g_i| |g_j|), so it is atan2(|6V| l, -g_i . g_j):
+/// the common factor drops out. The six (s, c) pairs are ranked without
 /// trigonometry by the side of pi/2 they lie on (the sign of c) and, within
-/// it, by s / (s + |c|), which grows with the angle below pi/2 and shrinks
-/// above, and keeps its relative accuracy near 0 and near pi (where a cosine
-/// cannot tell the angles of a sliver apart). Angles that differ by a
-/// rounding error may swap, as in triangle_angle_range(). A ratio that is
-/// not a number (a degenerate edge or projection, non-finite coordinates)
-/// takes the full path.
+/// it, by s / (s + |c|), which keeps its relative accuracy near 0 and near
+/// pi (where a cosine cannot tell a sliver's angles apart); atan2 runs for
+/// the two extremes. The numbers agree with dihedral_angles() to rounding
+/// (tests/test_skewness.cpp, against extended precision). A flat element
+/// (6V = 0) gives 0 and pi; non-finite coordinates give not-a-number.
 inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<double, 3>, 4>& p)
 {
+  using T = Simplex_tables<3>;
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  std::array<std::array<double, 3>, 4> q{{{0, 0, 0}, sub<3>(p[1], p[0]), sub<3>(p[2], p[0]), sub<3>(p[3], p[0])}};
+  double extent = 0, sum = 0;
+  for(int v = 1; v < 4; ++v)
+    for(int i = 0; i < 3; ++i) {
+      extent = std::max(extent, std::abs(q[std::size_t(v)][std::size_t(i)]));
+      sum += q[std::size_t(v)][std::size_t(i)];
+    }
+  if(!std::isfinite(sum))
+    return {nan, nan};
+  if(extent == 0)
+    return {0, pi};
+  // scaled by the extent, so that the fourth powers below neither underflow nor overflow
+  const double inv = 1.0 / extent;
+  for(auto& v : q)
+    for(auto& c : v)
+      c *= inv;
+  const auto& a = q[1];
+  const auto& b = q[2];
+  const auto& c = q[3];
+  std::array<std::array<double, 3>, 4> g;
+  g[1] = cross(b, c);
+  g[2] = cross(c, a);
+  g[3] = cross(a, b);
+  for(int i = 0; i < 3; ++i)
+    g[0][std::size_t(i)] = -(g[1][std::size_t(i)] + g[2][std::size_t(i)] + g[3][std::size_t(i)]);
+  const double volume6 = std::abs(dot<3>(a, g[1]));
+  if(volume6 == 0)
+    return {0, pi};
   std::array<double, 6> sine, cosine, key;
   std::array<bool, 6> obtuse;
-  std::array<double, 3> u, w;
-  bool finite = true;
   for(std::size_t k = 0; k < 6; ++k) {
-    dihedral_projections(p, int(k), u, w);
-    sine[k] = norm<3>(cross(u, w));
-    cosine[k] = dot<3>(u, w);
+    const auto e = sub<3>(q[std::size_t(T::edge[k][1])], q[std::size_t(T::edge[k][0])]);
+    sine[k] = volume6 * std::sqrt(dot<3>(e, e));
+    cosine[k] = -dot<3>(g[std::size_t(T::other[k][0])], g[std::size_t(T::other[k][1])]);
     obtuse[k] = cosine[k] < 0;
     key[k] = sine[k] / (sine[k] + std::abs(cosine[k]));
-    finite = finite && std::isfinite(key[k]);
   }
-  if(!finite)
-    return extremes(dihedral_angles(p));
-  const auto less = [&](std::size_t a, std::size_t b) {
-    if(obtuse[a] != obtuse[b])
-      return obtuse[b];
-    return obtuse[a] ? key[a] > key[b] : key[a] < key[b];
+  const auto less = [&](std::size_t x, std::size_t y) {
+    if(obtuse[x] != obtuse[y])
+      return obtuse[y];
+    return obtuse[x] ? key[x] > key[y] : key[x] < key[y];
   };
   std::size_t lo = 0, hi = 0;
   for(std::size_t k = 1; k < 6; ++k) {

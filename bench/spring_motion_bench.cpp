@@ -837,30 +837,24 @@ void write_case_mesh(const Case<D>& c, const std::string& path)
 {
   sm::Indexed_mesh<D> m;
   m.points = c.net.points;
-  std::map<std::array<std::uint32_t, D>, int> count;
   for(const auto& e : c.net.elements) {
     typename sm::Indexed_mesh<D>::Element el;
     for(int k = 0; k <= D; ++k)
       el[std::size_t(k)] = std::uint32_t(e[std::size_t(k)]);
     m.elements.push_back(el);
     m.element_labels.push_back(10);
-    for(int skip = 0; skip <= D; ++skip) {
-      std::array<std::uint32_t, D> f;
-      for(int k = 0, j = 0; k <= D; ++k)
-        if(k != skip)
-          f[std::size_t(j++)] = el[std::size_t(k)];
-      std::sort(f.begin(), f.end());
-      ++count[f];
-    }
   }
-  for(const auto& [f, n] : count)
-    if(n == 1) {
-      bool moving = true;
-      for(auto v : f)
-        moving = moving && c.roles[v] == sm::Vertex_role::moving;
-      m.boundary_facets.push_back(f);
-      m.boundary_labels.push_back(moving ? 1 : 2);
+  // the network's boundary facets (a map of all facets would take gigabytes on the box)
+  for(const auto& bf : c.net.boundary_facets) {
+    std::array<std::uint32_t, D> f;
+    bool moving = true;
+    for(int k = 0; k < D; ++k) {
+      f[std::size_t(k)] = std::uint32_t(bf[std::size_t(k)]);
+      moving = moving && c.roles[bf[std::size_t(k)]] == sm::Vertex_role::moving;
     }
+    m.boundary_facets.push_back(f);
+    m.boundary_labels.push_back(moving ? 1 : 2);
+  }
   m.label_names = {{1, "body"}, {2, "outer"}};
   sm::write_medit(m, path);
 }
@@ -1011,6 +1005,20 @@ Cli_results measure_cli(const Setup& setup)
     progress(std::string("the wing through the command line: not available: ") + e.what());
   }
 #endif
+  if(!setup.quick) {
+    // peak memory on the largest mesh: it does not depend on the number of
+    // steps, so 2 small ones (the time is not a target)
+    const auto c = box_case(setup.box, setup);
+    const std::string mesh = dir + "/box_3d.mesh";
+    progress("writing the box as " + mesh);
+    write_case_mesh(c, mesh);
+    progress("spring-motion on the box (" + std::to_string(c.net.number_of_elements()) + " tetrahedra)");
+    out.rows.push_back(cli_runs(c.name + ", grid_scaled, 2 steps to 1 deg",
+                                {cli, "deform", mesh, "--moving", "1", "--pitch", "1", "--center", "0.5,0.5,0.5",
+                                 "--steps", "2", "--quiet", "--output", dir + "/cli_box.vtu"},
+                                c.net.number_of_elements(), 1, dir + "/cli_box.log"));
+    std::filesystem::remove(mesh); // a few hundred MB
+  }
   return out;
 }
 
@@ -1071,6 +1079,16 @@ void cli_targets(const Cli_results& cli, std::vector<Target>& ts)
     std::snprintf(m, sizeof m, "%.2fx the target", b / 400);
     ts.push_back({"peak memory per tetrahedron, wing, spring-motion", "<= 400 B", buf, b <= 400, m});
   }
+  if(const Cli_row* w = find("wing, grid_scaled"))
+    if(const Cli_row* b = find("box")) {
+      // peak memory against elements, wing -> box
+      const double p = std::log(b->median.peak_mib / w->median.peak_mib) / std::log(double(b->elements) / double(w->elements));
+      std::snprintf(buf, sizeof buf, "n^%.2f (%.0f -> %.0f MiB, %.0f -> %.0f B/tet)", p, w->median.peak_mib,
+                    b->median.peak_mib, w->median.peak_mib * 1048576.0 / double(w->elements),
+                    b->median.peak_mib * 1048576.0 / double(b->elements));
+      std::snprintf(m, sizeof m, "exponent %.2f vs 1.0", p);
+      ts.push_back({"peak memory growth, spring-motion, wing -> box", "<= n^1.0", buf, p <= 1.0, m});
+    }
   if(cli.busy_default && cli.busy_one) {
     const double x = cli.busy_default->median.seconds / cli.busy_one->median.seconds;
     std::snprintf(buf, sizeof buf, "%.2fx (%.2f s / %.2f s, median of %d)", x, cli.busy_default->median.seconds,

@@ -16,7 +16,8 @@ diffusivity from the wing, GAMG for cellDisplacement, the wing patch moved by
 angularOscillatingDisplacement (Rodrigues' rotation of the initial points by
 alpha_m sin(pi t / 2), t = i/n: the quarter-sine exactly), the far field
 fixed; moveDynamicMesh checks the mesh after every step. SpringMotion: its
-default model (grid_scaled) and solver on one thread, like serial OpenFOAM.
+default model (grid_scaled, or --model) and solver on one thread, like
+serial OpenFOAM.
 
 Both final meshes are measured by mesh_quality.py (minimum triangle angle in
 2D, minimum dihedral angle in 3D, inverted elements against the initial mesh).
@@ -211,15 +212,15 @@ def run_foam(name, poly, steps, amplitude, work, measure=True, reuse=False):
 
 # ---------------------------------------------------------------- SpringMotion
 
-def run_spring_motion(name, gmsh_mesh, steps, amplitude, work, exe, measure=True):
+def run_spring_motion(name, gmsh_mesh, steps, amplitude, work, exe, measure=True, model="grid_scaled"):
     case = CASES[name]
-    out = os.path.join(work, "sm_%s_%g_%d" % (name, amplitude, steps))
+    out = os.path.join(work, "sm_%s_%s_%g_%d" % (name, model.replace("+", "_"), amplitude, steps))
     os.makedirs(out, exist_ok=True)
     center = ",".join("%r" % c for c in (case["center"][:2] if name == "2d" else case["center"]))
     report = os.path.join(out, "report.json")
     cmd = [exe, "deform", gmsh_mesh, "--moving", case["wing"], "--pitch", repr(amplitude),
            "--center", center, "--steps", str(steps), "--threads", "1", "--quiet",
-           "--report", report]
+           "--model", model, "--report", report]
     final = os.path.join(out, "final.mesh")
     if measure:
         cmd += ["--output", final]
@@ -239,7 +240,7 @@ def run_spring_motion(name, gmsh_mesh, steps, amplitude, work, exe, measure=True
         # the full run took more is its other steps_done - 1 steps.
         first = [exe, "deform", gmsh_mesh, "--moving", case["wing"],
                  "--pitch", repr(angle_at(1, steps, amplitude)), "--center", center, "--steps", "1",
-                 "--threads", "1", "--quiet"]
+                 "--threads", "1", "--quiet", "--model", model]
         status, cpu1, _ = run(first, os.path.join(out, "log.spring-motion-one-step"))
         if status not in (0, 3):
             sys.exit("compare.py: spring-motion failed (status %d), see %s/log.spring-motion-one-step"
@@ -307,6 +308,8 @@ def main():
     parser.add_argument("--bisect-tolerance", type=float, default=0.5, help="degrees")
     parser.add_argument("--reuse-foam", action="store_true",
                         help="take the OpenFOAM runs of the main table from a finished earlier run in --work")
+    parser.add_argument("--model", default="grid_scaled",
+                        help="SpringMotion's stiffness model (spring-motion deform --model; default grid_scaled)")
     parser.add_argument("--spring-motion", default=os.path.join(ROOT, "build", "src", "cli", "spring-motion"))
     parser.add_argument("--work", default=os.path.join(ROOT, "build", "openfoam_compare"))
     args = parser.parse_args()
@@ -325,7 +328,7 @@ def main():
         n = args.steps_3d if (name == "3d" and args.steps_3d) else steps
         amp = CASES[name]["amplitude"]
         print("%s: %s, %d steps to %g deg ..." % (name, os.path.relpath(gmsh_mesh, ROOT), n, amp), flush=True)
-        sm = run_spring_motion(name, gmsh_mesh, n, amp, args.work, args.spring_motion)
+        sm = run_spring_motion(name, gmsh_mesh, n, amp, args.work, args.spring_motion, model=args.model)
         of = run_foam(name, poly, n, amp, args.work, reuse=args.reuse_foam)
         rows += [(name, sm), (name, of)]
         print("  initial mesh: min %s %.2f deg" % (of["initial_quality"]["kind"],
@@ -344,12 +347,13 @@ def main():
 
             def sm_ok(a):
                 return run_spring_motion(name, gmsh_mesh, n, a, args.work, args.spring_motion,
-                                         measure=False)["completed"]
+                                         measure=False, model=args.model)["completed"]
 
             def of_ok(a):
                 return run_foam(name, poly, n, a, args.work, measure=False)["first_negative"] is None
 
-            print("  %s SpringMotion: %.1f deg" % (name, bisect(sm_ok, 0.0, 90.0, args.bisect_tolerance)),
+            print("  %s SpringMotion (%s): %.1f deg"
+                  % (name, args.model, bisect(sm_ok, 0.0, 90.0, args.bisect_tolerance)),
                   flush=True)
             print("  %s OpenFOAM: %.1f deg (no negative volume at any step)"
                   % (name, bisect(of_ok, 0.0, 90.0, args.bisect_tolerance)), flush=True)

@@ -324,23 +324,35 @@ def test_write_to_a_bad_path_raises(data, tmp_path):
 
 def test_deform_releases_the_gil(data):
     mesh = sm.read_mesh(data(NACA))
-    span = {}
 
-    def work():
-        span["start"] = time.perf_counter()
-        sm.deform(mesh, moving="airfoil", pitch=10, center=(0.25, 0), steps=40, threads=1)
-        span["end"] = time.perf_counter()
+    def run_beside_a_ticking_thread(steps):
+        span = {}
 
-    ticks = []
-    worker = threading.Thread(target=work)
-    worker.start()
-    while worker.is_alive():
-        ticks.append(time.perf_counter())
-    worker.join()
-    lo = span["start"] + 0.25 * (span["end"] - span["start"])
-    hi = span["start"] + 0.75 * (span["end"] - span["start"])
+        def work():
+            span["start"] = time.perf_counter()
+            sm.deform(mesh, moving="airfoil", pitch=10, center=(0.25, 0), steps=steps, threads=1)
+            span["end"] = time.perf_counter()
+
+        ticks = []
+        worker = threading.Thread(target=work)
+        worker.start()
+        while worker.is_alive():
+            ticks.append(time.perf_counter())
+        worker.join()
+        return span["start"], span["end"], ticks
+
+    # a fast machine finishes a short run inside one switch interval (5 ms), where even
+    # a released GIL leaves no tick in the middle: lengthen the run until it lasts long
+    # enough to tell
+    steps = 40
+    start, end, ticks = run_beside_a_ticking_thread(steps)
+    while end - start < 0.2 and steps < 40 * 64:
+        steps *= 2
+        start, end, ticks = run_beside_a_ticking_thread(steps)
+    assert end - start > 0.05, "the run is too short to tell"
+    lo = start + 0.25 * (end - start)
+    hi = start + 0.75 * (end - start)
     # with the GIL held through the run this thread could not tick in its middle
-    assert span["end"] - span["start"] > 0.05, "the run is too short to tell"
     assert any(lo < t < hi for t in ticks)
 
 

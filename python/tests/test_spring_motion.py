@@ -3,8 +3,6 @@
 import json
 import math
 import subprocess
-import threading
-import time
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -322,38 +320,14 @@ def test_write_to_a_bad_path_raises(data, tmp_path):
 
 # ---- threads -----------------------------------------------------------------------
 
-def test_deform_releases_the_gil(data):
+def test_deform_releases_the_gil(data, ticks_in_the_middle):
     mesh = sm.read_mesh(data(NACA))
 
-    def run_beside_a_ticking_thread(steps):
-        span = {}
+    def work(repeats):
+        sm.deform(mesh, moving="airfoil", pitch=10, center=(0.25, 0), steps=40 * repeats, threads=1)
 
-        def work():
-            span["start"] = time.perf_counter()
-            sm.deform(mesh, moving="airfoil", pitch=10, center=(0.25, 0), steps=steps, threads=1)
-            span["end"] = time.perf_counter()
-
-        ticks = []
-        worker = threading.Thread(target=work)
-        worker.start()
-        while worker.is_alive():
-            ticks.append(time.perf_counter())
-        worker.join()
-        return span["start"], span["end"], ticks
-
-    # a fast machine finishes a short run inside one switch interval (5 ms), where even
-    # a released GIL leaves no tick in the middle: lengthen the run until it lasts long
-    # enough to tell
-    steps = 40
-    start, end, ticks = run_beside_a_ticking_thread(steps)
-    while end - start < 0.2 and steps < 40 * 64:
-        steps *= 2
-        start, end, ticks = run_beside_a_ticking_thread(steps)
-    assert end - start > 0.05, "the run is too short to tell"
-    lo = start + 0.25 * (end - start)
-    hi = start + 0.75 * (end - start)
     # with the GIL held through the run this thread could not tick in its middle
-    assert any(lo < t < hi for t in ticks)
+    assert ticks_in_the_middle(work)
 
 
 # ---- the example -------------------------------------------------------------------

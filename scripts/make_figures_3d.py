@@ -1,12 +1,16 @@
 #!/usr/bin/python3
 """Figures of the 3D NACA0012 wing case, like the paper's Figs. 8-10, from the
 outputs of `naca0012_wing_3d --report-dir DIR`. Usage:
-    make_figures_3d.py DIR OUTDIR
+    make_figures_3d.py DIR OUTDIR [--models a,b,... --prefix NAME]
 Writes OUTDIR/naca0012_wing_midspan.png (the tetrahedra cut by the mid-span
 plane z = 0 near the wing, original and every model at +alpha_m or its last
 valid angle, coloured by R), naca0012_wing_tip.png (the same cut at z = 0.97,
 near the tip) and naca0012_wing_histograms.png (R of the tetrahedra touching
-the wing: original, lineal, grid-scaled, at +alpha_m and -alpha_m)."""
+the wing: original, lineal, grid-scaled, at +alpha_m and -alpha_m). With
+--models, the cuts show those models and are written as NAME_midspan.png and
+NAME_tip.png, without the histograms (the element models' figures:
+`--models ball_vertex_p2,torsional,ball_vertex,grid_scaled+ball_vertex
+--prefix naca0012_wing_element_models`)."""
 import json
 import os
 import sys
@@ -22,7 +26,9 @@ from matplotlib.collections import PolyCollection  # noqa: E402
 MODELS = ["lineal", "lineal_p2", "blom", "zeng_ethier", "zeng_ethier_dihedral", "grid_scaled"]
 TITLES = {"original": "original mesh", "lineal": "lineal (p = 1)", "lineal_p2": "lineal (p = 2)",
           "blom": "semi-torsional (Blom)", "zeng_ethier": "Zeng-Ethier (face angles)",
-          "zeng_ethier_dihedral": "Zeng-Ethier (dihedral)", "grid_scaled": "grid-scaled (the paper's)"}
+          "zeng_ethier_dihedral": "Zeng-Ethier (dihedral)", "grid_scaled": "grid-scaled (the paper's)",
+          "torsional": "torsional (Degand-Farhat)", "ball_vertex": "ball-vertex, k = 1/h",
+          "ball_vertex_p2": "ball-vertex, k = 1/h^2", "grid_scaled+ball_vertex": "grid-scaled + ball-vertex"}
 EDGES = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
 
 
@@ -81,8 +87,8 @@ def state(rep):
     return f"inverts at step {rep['first_invalid']['step']}, last valid {rep['final_angle_deg']:.1f} deg"
 
 
-def slices(src, out, z0, window, filename, label):
-    names = ["original"] + [m for m in MODELS if os.path.exists(os.path.join(src, m + "_pos.vtu"))]
+def slices(src, out, z0, window, filename, label, models):
+    names = ["original"] + [m for m in models if os.path.exists(os.path.join(src, m + "_pos.vtu"))]
     cols = min(4, len(names))
     rows = (len(names) + cols - 1) // cols
     fig, axes = plt.subplots(rows, cols, figsize=(4 * cols, 3.4 * rows), constrained_layout=True, squeeze=False)
@@ -127,13 +133,21 @@ def histograms(src, out):
 
 
 def main():
-    if len(sys.argv) != 3:
+    args = sys.argv[1:]
+    models, prefix = MODELS, "naca0012_wing"
+    if len(args) == 6 and args[2] == "--models" and args[4] == "--prefix":
+        models, prefix = args[3].split(","), args[5]
+        unknown = [m for m in models if m not in TITLES]
+        if unknown:
+            sys.exit(f"make_figures_3d.py: unknown model(s) {unknown}; known: {sorted(TITLES)}")
+    elif len(args) != 2:
         sys.exit(__doc__)
-    src, out = sys.argv[1], sys.argv[2]
+    src, out = args[0], args[1]
     os.makedirs(out, exist_ok=True)
-    slices(src, out, 0.0, (-0.3, 1.4, -0.6, 0.6), "naca0012_wing_midspan.png", "z = 0 (mid-span)")
-    slices(src, out, 0.97, (-0.3, 1.4, -0.6, 0.6), "naca0012_wing_tip.png", "z = 0.97 (near the tip)")
-    histograms(src, out)
+    slices(src, out, 0.0, (-0.3, 1.4, -0.6, 0.6), prefix + "_midspan.png", "z = 0 (mid-span)", models)
+    slices(src, out, 0.97, (-0.3, 1.4, -0.6, 0.6), prefix + "_tip.png", "z = 0.97 (near the tip)", models)
+    if models is MODELS:
+        histograms(src, out)
 
 
 if __name__ == "__main__":

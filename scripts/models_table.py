@@ -237,7 +237,7 @@ def main():
                      f"started was {min(float(r[2]) for r in runs):.2f} to {max(float(r[2]) for r in runs):.2f} "
                      "on 2 cores, so the times compare within a table, not with an idle machine's.")
     if runner.missing:
-        lines.append(f"({runner.missing} runs not made yet: the rows they decide say 'not run' or "
+        lines.append(f"(At least {runner.missing} runs are not made yet: the rows they decide say 'not run' or "
                      "'search not finished'.)")
     if args.figures:
         for name, runs in largest_positive.items():

@@ -45,9 +45,12 @@ MODELS_3D = ["lineal", "lineal_p2", "blom", "zeng_ethier", "grid_scaled", "torsi
 MODELS_2D = ["grid_scaled", "torsional", "ball_vertex", "ball_vertex_p2", "grid_scaled+ball_vertex"]
 
 MESHES = {
-    "mesh3": dict(title="Mesh_3 wing (the wing demo's default mesh)", center="0.5,0,0", up_to=180, models=MODELS_3D),
-    "gmsh": dict(title="Gmsh wing (scripts/make_gmsh_wing.py)", center="0.5,0,0", up_to=180, models=MODELS_3D),
-    "airfoil": dict(title="2D airfoil (data/naca0012_2d.msh)", center="0.25,0", up_to=720, models=MODELS_2D),
+    "mesh3": dict(title="Mesh_3 wing (the wing demo's default mesh)", moving="wing", center="0.5,0,0", up_to=180,
+                  models=MODELS_3D),
+    "gmsh": dict(title="Gmsh wing (scripts/make_gmsh_wing.py)", moving="wing", center="0.5,0,0", up_to=180,
+                 models=MODELS_3D),
+    "airfoil": dict(title="2D airfoil (data/naca0012_2d.msh)", moving="airfoil", center="0.25,0", up_to=720,
+                    models=MODELS_2D),
 }
 AT = 30  # the amplitude of the quality and timing columns
 
@@ -81,7 +84,7 @@ class Runner:
         self.cli, self.work, self.plan_only = cli, work, plan_only
         self.missing = 0
 
-    def report(self, mesh_name, mesh, center, model, amplitude):
+    def report(self, mesh_name, mesh, model, amplitude):
         folder = os.path.join(self.work, "runs", mesh_name)
         os.makedirs(folder, exist_ok=True)
         path = os.path.join(folder, f"{model}_{amplitude:+d}.json")
@@ -92,8 +95,9 @@ class Runner:
             return None
         print(f"  {mesh_name} {model} {amplitude:+d} deg ...", end="", file=sys.stderr, flush=True)
         start = time.time()
-        status = subprocess.run([self.cli, "deform", mesh, "--moving", "wing" if mesh_name != "airfoil" else "airfoil",
-                                 "--pitch", str(amplitude), "--center", center, "--steps", "100", "--model", model,
+        m = MESHES[mesh_name]
+        status = subprocess.run([self.cli, "deform", mesh, "--moving", m["moving"],
+                                 "--pitch", str(amplitude), "--center", m["center"], "--steps", "100", "--model", model,
                                  "--quiet", "--report", path], stdout=subprocess.DEVNULL).returncode
         if status not in (0, 3):
             raise SystemExit(f"models_table.py: spring-motion exited with {status} on {mesh_name} {model} {amplitude}")
@@ -144,19 +148,19 @@ def largest_amplitude(run, up_to, sign, first):
     return lo, lo_report
 
 
-def draw_at_largest(name, mesh, center, runs, cli, work, out):
+def draw_at_largest(name, mesh, runs, cli, work, out):
     """The wing at each model's largest positive amplitude, as VTU files that
     scripts/make_figures_3d.py cuts and colours."""
     folder = os.path.join(work, "figures", name)
     os.makedirs(folder, exist_ok=True)
     jobs = [("original", ["--translate", "0,0,0", "--steps", "1"])]
-    jobs += [(model + "_pos", ["--pitch", str(a), "--center", center, "--steps", "100", "--model", model])
+    jobs += [(model + "_pos", ["--pitch", str(a), "--center", MESHES[name]["center"], "--steps", "100", "--model", model])
              for model, a in runs]
     for base, motion in jobs:
         vtu = os.path.join(folder, base + ".vtu")
         if not os.path.exists(vtu):
             print(f"  figure: {name} {base} {' '.join(motion)}", file=sys.stderr, flush=True)
-            subprocess.run([cli, "deform", mesh, "--moving", "wing", *motion, "--quiet", "--output", vtu,
+            subprocess.run([cli, "deform", mesh, "--moving", MESHES[name]["moving"], *motion, "--quiet", "--output", vtu,
                             "--report", os.path.join(folder, base + ".json")], check=True,
                            stdout=subprocess.DEVNULL)
     subprocess.run(["/usr/bin/python3", os.path.join(REPO, "scripts", "make_figures_3d.py"), folder, out,
@@ -207,7 +211,7 @@ def main():
         for model in (args.models.split(",") if args.models else m["models"]):
             for d in args.directions.split(","):
                 sign = 1 if d == "+" else -1
-                run = lambda a: runner.report(name, mesh, m["center"], model, a)
+                run = lambda a: runner.report(name, mesh, model, a)
                 first = run(sign * AT)
                 amplitude, at_max = largest_amplitude(run, up_to, sign, first)
                 if first is None:
@@ -242,8 +246,7 @@ def main():
     if args.figures:
         for name, runs in largest_positive.items():
             if name != "airfoil":
-                draw_at_largest(name, mesh_file(name, build, work), MESHES[name]["center"], runs, cli, work,
-                                args.figures)
+                draw_at_largest(name, mesh_file(name, build, work), runs, cli, work, args.figures)
     text = "\n".join(lines) + "\n"
     sys.stdout.write(text)
     if args.out:

@@ -6,15 +6,17 @@ amplitude whose 100-step quarter-sine run completes (found by bisection to
 at that amplitude and at 30 degrees, and the time and solver iterations per
 step of the run to 30 degrees. Every run goes through `spring-motion deform`.
 
-    /usr/bin/python3 scripts/models_table.py [--build build] [--meshes mesh3,gmsh,airfoil]
-        [--models a,b,...] [--directions +,-] [--up-to DEG] [--out FILE] [--plan]
-        [--figures DIR]
+    /usr/bin/python3 scripts/models_table.py [--build build]
+        [--meshes mesh3,gmsh,airfoil,mesh3_first] [--models a,b,...] [--directions +,-]
+        [--up-to DEG] [--threads T] [--out FILE] [--plan] [--figures DIR]
 
 Meshes: `mesh3` is the wing demo's CGAL Mesh_3 wing (written by
 `naca0012_wing_3d --mesh-only`), `gmsh` an independent Gmsh wing of the same
-size (scripts/make_gmsh_wing.py, Debian's python3-gmsh), both pitched about
-the z axis through (0.5, 0, 0) up to 180 degrees; `airfoil` the 2D airfoil
-data/naca0012_2d.msh about (0.25, 0) up to 720 degrees. The runs' JSON
+size (scripts/make_gmsh_wing.py, Debian's python3-gmsh), `mesh3_first` the
+demo's first default Mesh_3 wing (no ODT, sliver bound 10, no sliver pass),
+all pitched about the z axis through (0.5, 0, 0) up to 180 degrees;
+`airfoil` the 2D airfoil data/naca0012_2d.msh about (0.25, 0) up to 720
+degrees. The runs' JSON
 reports are kept under BUILD/models_table/ and reused, so an interrupted
 table resumes where it stopped and a model can be added later; the table
 (Markdown, written whole or not at all) says which runs it lacks. With
@@ -45,14 +47,22 @@ MODELS_3D = ["lineal", "lineal_p2", "blom", "zeng_ethier", "grid_scaled", "torsi
 MODELS_2D = ["grid_scaled", "torsional", "ball_vertex", "ball_vertex_p2", "grid_scaled+ball_vertex"]
 
 MESHES = {
-    "mesh3": dict(title="Mesh_3 wing (the wing demo's default mesh)", moving="wing", center="0.5,0,0", up_to=180,
-                  models=MODELS_3D),
+    "mesh3": dict(title="Mesh_3 wing (the wing demo's default mesh: ODT, sliver bounds 20, sliver pass)",
+                  moving="wing", center="0.5,0,0", up_to=180, models=MODELS_3D, mesh_options=[]),
     "gmsh": dict(title="Gmsh wing (scripts/make_gmsh_wing.py)", moving="wing", center="0.5,0,0", up_to=180,
                  models=MODELS_3D),
     "airfoil": dict(title="2D airfoil (data/naca0012_2d.msh)", moving="airfoil", center="0.25,0", up_to=720,
                     models=MODELS_2D),
+    # the demo's first default, kept for comparison: Mesh_3 alone, whose
+    # slivers at the tip outline stop the edge models near 20 degrees
+    "mesh3_first": dict(title="Mesh_3 wing, the demo's first default (no ODT, sliver bound 10, no sliver pass)",
+                        moving="wing", center="0.5,0,0", up_to=180, models=MODELS_3D,
+                        mesh_options=["--odt", "0", "--sliver-bound", "10", "--sliver-smoothing", "0"]),
 }
 AT = 30  # the amplitude of the quality and timing columns
+# the quality a run to the largest amplitude has at its first step past this
+# angle (no run of its own: the run to 180 passes 90 degrees at step 57)
+PASSING = 90
 
 
 def mesh_file(name, build, work):
@@ -65,12 +75,12 @@ def mesh_file(name, build, work):
                            check=True, stdout=subprocess.DEVNULL)
             os.replace(path + ".tmp.msh", path)
         return path
-    cache = os.path.join(work, "mesh3")
+    cache = os.path.join(work, name)
     os.makedirs(cache, exist_ok=True)
     found = glob.glob(os.path.join(cache, "naca0012_wing_*.mesh"))
     if not found:
-        subprocess.run([os.path.join(build, "examples", "naca0012_wing_3d"), "--mesh-only", "--mesh-cache", cache],
-                       check=True, stdout=subprocess.DEVNULL)
+        subprocess.run([os.path.join(build, "examples", "naca0012_wing_3d"), "--mesh-only", "--mesh-cache", cache,
+                        *MESHES[name]["mesh_options"]], check=True, stdout=subprocess.DEVNULL)
         found = glob.glob(os.path.join(cache, "naca0012_wing_*.mesh"))
     if len(found) != 1:
         raise SystemExit(f"models_table.py: expected one wing mesh in {cache}, found {found}")
@@ -80,8 +90,8 @@ def mesh_file(name, build, work):
 class Runner:
     """Runs (or reuses) one pitch run and returns its report."""
 
-    def __init__(self, cli, work, plan_only):
-        self.cli, self.work, self.plan_only = cli, work, plan_only
+    def __init__(self, cli, work, plan_only, threads):
+        self.cli, self.work, self.plan_only, self.threads = cli, work, plan_only, threads
         self.missing = 0
 
     def report(self, mesh_name, mesh, model, amplitude):
@@ -98,6 +108,7 @@ class Runner:
         m = MESHES[mesh_name]
         status = subprocess.run([self.cli, "deform", mesh, "--moving", m["moving"],
                                  "--pitch", str(amplitude), "--center", m["center"], "--steps", "100", "--model", model,
+                                 *(["--threads", str(self.threads)] if self.threads else []),
                                  "--quiet", "--report", path], stdout=subprocess.DEVNULL).returncode
         if status not in (0, 3):
             raise SystemExit(f"models_table.py: spring-motion exited with {status} on {mesh_name} {model} {amplitude}")
@@ -105,7 +116,7 @@ class Runner:
         with open(os.path.join(self.work, "runs.log"), "a") as log:
             log.write(f"{time.strftime('%Y-%m-%dT%H:%M:%S', time.gmtime(start))}Z load {os.getloadavg()[0]:.2f} "
                       f"{mesh_name} {model} {amplitude:+d} {time.time() - start:.1f} s "
-                      f"{'completes' if r['completed'] else 'stops'}\n")
+                      f"{'completes' if r['completed'] else 'stops'} threads {r['steps'][0]['threads'] if r['steps'] else '-'}\n")
         print(f" {'completes' if r['completed'] else 'stops at %.1f' % last_valid(r)['angle_deg']}"
               f" ({time.time() - start:.0f} s)", file=sys.stderr)
         return r
@@ -175,7 +186,8 @@ def fmt(x, spec):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--build", default=os.path.join(REPO, "build"))
-    ap.add_argument("--meshes", default="mesh3,gmsh,airfoil")
+    ap.add_argument("--meshes", default="mesh3,gmsh,airfoil,mesh3_first")
+    ap.add_argument("--threads", type=int, help="spring-motion's --threads (default: its own choice)")
     ap.add_argument("--models", help="comma list (default: every model of the mesh's dimension)")
     ap.add_argument("--directions", default="+,-")
     ap.add_argument("--up-to", type=int, help="largest amplitude searched (default 180 for wings, 720 in 2D)")
@@ -188,26 +200,28 @@ def main():
     cli = os.path.join(build, "src", "cli", "spring-motion")
     work = os.path.join(build, "models_table")
     os.makedirs(work, exist_ok=True)
-    runner = Runner(cli, work, args.plan)
+    runner = Runner(cli, work, args.plan, args.threads)
 
     lines = ["# Largest pitch amplitude and mesh quality of every stiffness model", "",
              "Made by `/usr/bin/python3 scripts/models_table.py` (each run: `spring-motion deform`, 100 "
              "quarter-sine steps, default solver). Largest amplitude: the largest whole number of degrees whose "
              "run completes without an inverted element; the angles are the smallest of the elements touching "
-             "the body, at the end of that run and of the run to 30 degrees; ms and iterations are medians "
+             "the body, at the end of that run, at its first step past 90 degrees (where it goes that far) and at the end of "
+             "the run to 30 degrees; ms and iterations are medians "
              "over the steps of the run to 30 degrees (to its last valid step where it stops earlier).", ""]
     largest_positive = {}  # mesh -> [(model, amplitude)]
     for name in args.meshes.split(","):
         if name not in MESHES:
-            raise SystemExit(f"models_table.py: unknown mesh '{name}' (mesh3, gmsh or airfoil)")
+            raise SystemExit(f"models_table.py: unknown mesh '{name}' ({', '.join(MESHES)})")
         m = MESHES[name]
         mesh = mesh_file(name, build, work)
         up_to = args.up_to or m["up_to"]
         angle = "dihedral angle" if name != "airfoil" else "angle"
         lines += [f"### {m['title']}", "",
                   f"| model | dir | largest amplitude (deg, to {up_to}) | min {angle} there | "
-                  f"min {angle} at {AT} deg | ms/step at {AT} deg | iterations/step |",
-                  "|---|---|---|---|---|---|---|"]
+                  f"min {angle} passing {PASSING} deg | min {angle} at {AT} deg | ms/step at {AT} deg | "
+                  "iterations/step |",
+                  "|---|---|---|---|---|---|---|---|"]
         for model in (args.models.split(",") if args.models else m["models"]):
             for d in args.directions.split(","):
                 sign = 1 if d == "+" else -1
@@ -215,12 +229,13 @@ def main():
                 first = run(sign * AT)
                 amplitude, at_max = largest_amplitude(run, up_to, sign, first)
                 if first is None:
-                    lines.append(f"| {model} | {d} | not run | | | | |")
+                    lines.append(f"| {model} | {d} | not run | | | | | |")
                     continue
                 steps = [s for s in first["steps"] if s["inverted"] == 0]
                 ms = statistics.median(1e3 * sum(s["seconds"].values()) for s in steps) if steps else None
                 its = statistics.median(s["iterations"] for s in steps) if steps else None
                 at30 = first["quality"]["moving_boundary"]["min_angle_deg"] if first["completed"] else None
+                passing = None
                 if amplitude is None:
                     largest, there = "search not finished", None
                 elif amplitude == 0:
@@ -228,10 +243,15 @@ def main():
                 else:
                     largest = f"**{amplitude}**" if amplitude == up_to else str(amplitude)
                     there = at_max["quality"]["moving_boundary"]["min_angle_deg"]
+                    past = [s for s in at_max["steps"] if abs(s["angle_deg"]) >= PASSING - 1e-9]
+                    passing = past[0]["min_angle_deg_moving"] if past and amplitude > PASSING else None
+                    if amplitude == PASSING:
+                        passing = there
                     if sign > 0:
                         largest_positive.setdefault(name, []).append((model, amplitude))
                 stop = "" if first["completed"] else f" (stops at {last_valid(first)['angle_deg']:.1f})"
-                lines.append(f"| {model} | {d} | {largest} | {fmt(there, '.2f')} | {fmt(at30, '.2f')}{stop} | "
+                lines.append(f"| {model} | {d} | {largest} | {fmt(there, '.2f')} | {fmt(passing, '.2f')} | "
+                             f"{fmt(at30, '.2f')}{stop} | "
                              f"{fmt(ms, '.1f' if ms is not None and ms < 10 else '.0f')} | {fmt(its, '.0f')} |")
         lines.append("")
     log = os.path.join(work, "runs.log")
@@ -240,6 +260,12 @@ def main():
         lines.append(f"Runs made from {runs[0][0]} to {runs[-1][0]} (UTC); the 1-minute load average as each "
                      f"started was {min(float(r[2]) for r in runs):.2f} to {max(float(r[2]) for r in runs):.2f} "
                      "on 2 cores, so the times compare within a table, not with an idle machine's.")
+        threads = [r[r.index("threads") + 1] for r in runs if "threads" in r]
+        if threads:
+            counts = ", ".join(f"{threads.count(t)} on {t} thread{'' if t == '1' else 's'}" for t in sorted(set(threads)))
+            lines.append(f"Threads: {len(runs) - len(threads)} runs with spring-motion's own choice (2 threads "
+                         f"unless it measured one faster), then {counts} (`--threads`; two tables ran side by "
+                         "side).")
     if runner.missing:
         lines.append(f"(At least {runner.missing} runs are not made yet: the rows they decide say 'not run' or "
                      "'search not finished'.)")

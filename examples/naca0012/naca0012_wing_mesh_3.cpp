@@ -34,12 +34,18 @@
 //   sphere's 5120-facet approximation far away.
 // * Defaults, measured with CGAL 5.5.1 (examples/naca0012_wing_3d --mesh-only
 //   --size-at-wing H --size-growth G): h = 0.04 + 0.091 d gives 55297 nodes
-//   and 336261 tetrahedra (-4.5% and +8.9% of the paper's 57924 and 308850).
-//   The count goes roughly as 1/G^3 (G = 0.088: 59146 nodes, over 10% in
-//   tetrahedra; G = 0.10 with h = 0.05: 37564 nodes). Mesh_3 makes about 6.1
-//   tetrahedra per node here, the paper's grid 5.33, so both counts cannot
-//   be hit exactly; this choice is inside 10% for both. The generation takes
-//   12-25 s on one core.
+//   and 320395 tetrahedra (-4.5% and +3.7% of the paper's 57924 and 308850;
+//   336261 without ODT). The count goes roughly as 1/G^3 (G = 0.088: 59146
+//   nodes, over 10% in tetrahedra; G = 0.10 with h = 0.05: 37564 nodes).
+//   Mesh_3 makes about 5.8 tetrahedra per node here, the paper's grid 5.33,
+//   so both counts cannot be hit exactly; this choice is inside 10% for
+//   both. The generation takes 12-25 s on one core without ODT, about 40 s
+//   with its 10 iterations and the sliver pass.
+// * Slivers next to the wing: ODT (10 iterations), a perturbation and
+//   exudation bound of 20 degrees and the sliver pass below (bound 20) are
+//   what lets the paper's grid-scaled model complete +/-30 degrees; with
+//   Mesh_3 alone at a bound of 10 it stops near 20 degrees on a sliver at
+//   the tip outline (docs/naca0012_3d/README.md).
 // * Determinism: Mesh_3 runs sequentially and make_mesh_3 reseeds CGAL's
 //   default random generator with 0; perturbation and exudation run without
 //   a time limit (see sliver_bound_deg), so they do not depend on the

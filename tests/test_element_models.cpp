@@ -452,7 +452,7 @@ TEST_CASE("EDGE+ball_vertex: edge springs of the edge model acting along the edg
   CHECK(internal::Is_element_model<With_ball_vertex<Lineal_stiffness>, 3>::value);
 }
 
-TEST_CASE("model table: one name per built-in model, each giving that model; bad names list the valid ones",
+TEST_CASE("model table: one name per built-in model, each giving that model, bad names listing the valid ones",
           "[stiffness][model_table]")
 {
   const std::vector<std::string> expected{"lineal",
@@ -462,6 +462,7 @@ TEST_CASE("model table: one name per built-in model, each giving that model; bad
                                           "grid_scaled",
                                           "torsional",
                                           "ball_vertex",
+                                          "ball_vertex_p2",
                                           "lineal+ball_vertex",
                                           "lineal_p2+ball_vertex",
                                           "blom+ball_vertex",
@@ -474,12 +475,17 @@ TEST_CASE("model table: one name per built-in model, each giving that model; bad
     INFO(e.name);
     CHECK(!e.summary.empty());
     CHECK(e.summary.find('\n') == std::string::npos);
-    // the reports name the model as the table does (lineal_p2 reports as
-    // lineal with exponent 2)
+    // the reports name the model as the table does; a _pN name reports as
+    // the model without it and exponent N (lineal_p2: lineal, exponent 2)
     const auto described = with_model(e.name, [](const auto& model) { return internal::describe_model(model, 2); });
     std::string name = e.name;
-    if(name.compare(0, 9, "lineal_p2") == 0)
-      name.replace(0, 9, "lineal");
+    const auto p = name.find("_p");
+    if(p != std::string::npos && p + 3 <= name.size() && (p + 3 == name.size() || name[p + 3] == '+')) {
+      const double exponent = name[p + 2] - '0';
+      name.erase(p, 3);
+      const auto& ps = described.parameters;
+      CHECK(std::count(ps.begin(), ps.end(), std::make_pair(std::string("exponent"), exponent)) == 1);
+    }
     CHECK(described.name == name);
   }
   const bool element_model = with_model("ball_vertex", [](const auto& model) {

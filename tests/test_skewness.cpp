@@ -75,7 +75,7 @@ TEST_CASE("equiangle_skewness: tetrahedra (3D, dihedral angles)", "[skewness]")
   CHECK(equiangle_skewness(P3{0, 0, 0}, P3{1, 0, 0}, P3{0, 1, 0}, P3{1, 1, 0}) == 1.0);
 }
 
-TEST_CASE("skewness_histogram: ten bins [b/10, (b+1)/10), R = 1 in the last, over the selected elements",
+TEST_CASE("skewness_histogram: ten bins from b/10 up to (b+1)/10, R = 1 in the last, over the selected elements",
           "[skewness]")
 {
   const std::vector<double> r{0.0, 0.05, 0.1, 0.25, 0.95, 1.0, 0.5};

@@ -210,7 +210,7 @@ TEST_CASE("ball-vertex: element matrix = sum k(h) grad h grad h^T, grad h by fin
   // central differences with step 1e-6 on O(1) coordinates: truncation and
   // round-off both near 1e-10 of max |K|
   const double tolerance = 1e-7;
-  for(double exponent : {1.0, 2.0}) {
+  for(double exponent : {1.0, 2.0, 3.0}) {
     INFO("exponent " << exponent);
     Ball_vertex_stiffness m;
     m.exponent = exponent;
@@ -463,6 +463,7 @@ TEST_CASE("model table: one name per built-in model, each giving that model, bad
                                           "torsional",
                                           "ball_vertex",
                                           "ball_vertex_p2",
+                                          "ball_vertex_p3",
                                           "lineal+ball_vertex",
                                           "lineal_p2+ball_vertex",
                                           "blom+ball_vertex",

@@ -49,7 +49,8 @@ inline const std::vector<Model_entry>& model_table()
         {"grid_scaled", "the paper's grid-scaled springs, k = (l0/l)(1/l^alpha + (sum 1/sin^2 theta)^beta)"},
         {"torsional", "lineal springs plus torsion springs 1/sin^2 theta at element angles (Farhat; Degand and Farhat in 3D)"},
         {"ball_vertex", "ball-vertex springs only: each vertex tied to its facing facet along the altitude, k = 1/h (Bottasso)"},
-        {"ball_vertex_p2", "ball-vertex springs with k = 1/h^2: short altitudes, flattening elements, stiffen faster"}};
+        {"ball_vertex_p2", "ball-vertex springs with k = 1/h^2: short altitudes, flattening elements, stiffen faster"},
+        {"ball_vertex_p3", "ball-vertex springs with k = 1/h^3: the elements next to the body stay closer to rigid"}};
     const std::size_t edge_models = 5;
     for(std::size_t m = 0; m < edge_models; ++m)
       t.push_back({t[m].name + ball_vertex_suffix(), t[m].name + " springs acting along their edges, plus ball-vertex springs"});
@@ -161,6 +162,10 @@ decltype(auto) with_model(const std::string& name, F&& f)
   }
   if(name == "ball_vertex_p2") {
     const Ball_vertex_stiffness model{2.0};
+    return f(model);
+  }
+  if(name == "ball_vertex_p3") {
+    const Ball_vertex_stiffness model{3.0};
     return f(model);
   }
   const auto& s = ball_vertex_suffix();

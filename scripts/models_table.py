@@ -266,9 +266,9 @@ def main():
         threads = [r[r.index("threads") + 1] for r in runs if "threads" in r]
         if threads:
             counts = ", ".join(f"{threads.count(t)} on {t} thread{'' if t == '1' else 's'}" for t in sorted(set(threads)))
-            lines.append(f"Threads: {len(runs) - len(threads)} runs with spring-motion's own choice (2 threads "
-                         f"unless it measured one faster), then {counts} (`--threads`; two tables ran side by "
-                         "side).")
+            lines.append(f"Threads: {len(runs) - len(threads)} runs before the log recorded them (spring-motion's own "
+                         f"choice: 2 threads unless it measured one faster), then {counts}; the runs on 1 thread "
+                         "were made with `--threads 1`, with up to three tables running side by side.")
     if runner.missing:
         lines.append(f"(At least {runner.missing} {'run is' if runner.missing == 1 else 'runs are'} not made yet: the "
                      "rows they decide say 'not run' or 'search not finished'.)")

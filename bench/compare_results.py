@@ -31,8 +31,9 @@ CASES = [
     ("2d paper", os.path.join(CACHE, "naca0012_2d_paper.mesh"), "1", ["--center", "0.25,0"], 45, 100),
     ("wing", os.path.join(CACHE, "wing_3d.mesh"), "1", ["--center", "0.25,0,0"], 30, 100),
 ]
-MODELS_2D = ["grid_scaled", "zeng_ethier", "lineal", "grid_scaled+ball_vertex"]
-MODELS_3D = ["grid_scaled", "zeng_ethier", "grid_scaled+ball_vertex"]
+MODELS_2D = ["grid_scaled", "zeng_ethier", "lineal", "grid_scaled+ball_vertex", "torsional", "ball_vertex",
+             "ball_vertex_p2", "ball_vertex_p3"]
+MODELS_3D = ["grid_scaled", "zeng_ethier", "grid_scaled+ball_vertex", "ball_vertex_p2"]
 
 
 def read_medit_vertices(path):

@@ -763,6 +763,13 @@ void print_table(const std::vector<Row>& rows)
   }
 }
 
+struct Target
+{
+  std::string what, target, measured;
+  bool met;
+  std::string margin;
+};
+
 // Block (element-model) against scalar (edge-model) systems on one mesh, one
 // thread: the 2D torsional and ball-vertex models (alone and added to the
 // grid-scaled springs) and the grid-scaled model through the same solver
@@ -775,19 +782,21 @@ struct Block_row
   double solve_ms = 0;      // per step, median
   double stiffness_ms = 0;  // per step, median (assembly included)
   double ms_per_iteration = 0;
-  double error = 0;         // max |ours - LDLT| on the captured systems
+  double error = -1;        // max |ours - LDLT| on the captured systems; -1: not computed
 };
 
-template <class Model>
-Block_row block_row(const Case<2>& c, const std::string& name, const Model& model)
+// `steps`: only the first steps of the case's schedule, and no comparison
+// with a direct solve (the wing's block systems are too large for one)
+template <int D, class Model>
+Block_row block_row(const Case<D>& c, const std::string& name, const Model& model, std::size_t steps = 0)
 {
   progress(c.name + ": " + name + " (1 thread)");
   Block_row b;
   b.model = name;
-  std::vector<Captured_system<2>> caps;
+  std::vector<Captured_system<D>> caps;
   sm::Solver_options o;
   o.threads = 1;
-  const auto rep = run_once(c, o, &caps, model);
+  const auto rep = run_once(c, o, steps ? nullptr : &caps, model, steps);
   std::vector<double> solve, stiff;
   std::size_t its = 0;
   for(const auto& s : rep.steps) {
@@ -804,9 +813,15 @@ Block_row block_row(const Case<2>& c, const std::string& name, const Model& mode
     total_solve += t;
   b.ms_per_iteration = 1e3 * total_solve / double(std::max<std::size_t>(1, its));
   for(const auto& cap : caps)
-    b.error = std::max(b.error, max_difference<2>(as_matrix<2>(cap.solution),
-                                                  reference_solution<2>(cap, to_eigen<2>(cap), true)));
+    b.error = std::max(b.error, max_difference<D>(as_matrix<D>(cap.solution),
+                                                  reference_solution<D>(cap, to_eigen<D>(cap), true)));
   return b;
+}
+
+// time per step (stiffness + solve, medians) of row k over row 0's
+double step_ratio(const std::vector<Block_row>& rows, std::size_t k)
+{
+  return (rows[k].solve_ms + rows[k].stiffness_ms) / (rows[0].solve_ms + rows[0].stiffness_ms);
 }
 
 void print_block_rows(const std::string& mesh, const std::vector<Block_row>& rows)
@@ -814,22 +829,36 @@ void print_block_rows(const std::string& mesh, const std::vector<Block_row>& row
   std::printf("\nBlock vs scalar systems, %s, 1 thread, default solver (err: max |ours - LDLT| on the captured "
               "systems):\n%-28s %6s %8s %10s %10s %12s %9s\n",
               mesh.c_str(), "model", "steps", "it/step", "solve ms", "stiff ms", "ms/iteration", "err");
-  for(const auto& r : rows)
-    std::printf("%-28s %6zu %8.1f %10.3f %10.3f %12.4f %9.2e\n", r.model.c_str(), r.steps, r.iterations, r.solve_ms,
-                r.stiffness_ms, r.ms_per_iteration, r.error);
+  for(const auto& r : rows) {
+    char err[16] = "n/a";
+    if(r.error >= 0)
+      std::snprintf(err, sizeof err, "%.2e", r.error);
+    std::printf("%-28s %6zu %8.1f %10.3f %10.3f %12.4f %9s\n", r.model.c_str(), r.steps, r.iterations, r.solve_ms,
+                r.stiffness_ms, r.ms_per_iteration, err);
+  }
   for(std::size_t k = 1; k < rows.size(); ++k)
-    std::printf("%s / %s: %.2fx the iterations per step, %.2fx the time per iteration\n", rows[k].model.c_str(),
-                rows[0].model.c_str(), rows[k].iterations / rows[0].iterations,
-                rows[k].ms_per_iteration / rows[0].ms_per_iteration);
+    std::printf("%s / %s: %.2fx the iterations per step, %.2fx the time per iteration, %.2fx the time per step\n",
+                rows[k].model.c_str(), rows[0].model.c_str(), rows[k].iterations / rows[0].iterations,
+                rows[k].ms_per_iteration / rows[0].ms_per_iteration, step_ratio(rows, k));
 }
 
-
-struct Target
+// The cost targets of the robust models: time per step (stiffness + solve)
+// against the grid-scaled model's on the same mesh, one thread.
+void block_targets(const std::vector<Block_row>& rows, const std::string& mesh, const std::string& model,
+                   double bound, std::vector<Target>& ts)
 {
-  std::string what, target, measured;
-  bool met;
-  std::string margin;
-};
+  for(std::size_t k = 1; k < rows.size(); ++k)
+    if(rows[k].model.rfind(model, 0) == 0) {
+      const double x = step_ratio(rows, k);
+      char buf[160], b[32], m[64];
+      std::snprintf(buf, sizeof buf, "%.2fx (%.1f / %.1f ms)", x, rows[k].solve_ms + rows[k].stiffness_ms,
+                    rows[0].solve_ms + rows[0].stiffness_ms);
+      std::snprintf(b, sizeof b, "<= %gx", bound);
+      std::snprintf(m, sizeof m, "%.2fx vs %gx", x, bound);
+      ts.push_back({mesh + ", " + model + " / grid-scaled per step", b, buf, x <= bound, m});
+    }
+}
+
 
 // ---- the command-line program, as a user runs it ---------------------------------------
 
@@ -1131,7 +1160,8 @@ void cli_targets(const Cli_results& cli, std::vector<Target>& ts)
 #endif
 }
 
-void print_targets(const std::vector<Row>& rows, const Cli_results& cli, bool quick)
+void print_targets(const std::vector<Row>& rows, const Cli_results& cli, bool quick,
+                   const std::vector<Block_row>& block_2d, const std::vector<Block_row>& block_wing)
 {
   std::vector<Target> ts;
   auto find = [&](const std::string& prefix) -> const Row* {
@@ -1242,6 +1272,12 @@ void print_targets(const std::vector<Row>& rows, const Cli_results& cli, bool qu
       ts.push_back({"default solver vs Eigen CG+IC", ">= 2x faster", buf, worst >= 2, m});
     }
   }
+  if(!block_2d.empty())
+    block_targets(block_2d, "2D paper mesh", "ball_vertex_p2", 1.5, ts);
+  if(!block_wing.empty()) {
+    block_targets(block_wing, "wing", "ball_vertex_p2", 3, ts);
+    block_targets(block_wing, "wing", "ball_vertex_p3", 3, ts);
+  }
   cli_targets(cli, ts);
   std::printf("\nTargets%s:\n", quick ? " -- QUICK RUN, smaller cases: not the real check" : "");
   std::printf("%-58s %-14s %-44s %-5s %s\n", "target", "bound", "measured", "met?", "by how much");
@@ -1312,7 +1348,7 @@ int main(int argc, char** argv)
     return 0;
   }
   std::vector<Row> rows;
-  std::vector<Block_row> block_rows;
+  std::vector<Block_row> block_rows, wing_block_rows;
   if(wanted(setup, "naca_coarse")) {
     progress("building the coarse NACA0012 mesh");
     const auto c = naca_case(false, setup);
@@ -1321,6 +1357,7 @@ int main(int argc, char** argv)
     block_rows.push_back(block_row(c, "torsional (2x2 blocks)", sm::Torsional_stiffness{}));
     block_rows.push_back(block_row(c, "ball_vertex (2x2 blocks)", sm::Ball_vertex_stiffness{}));
     block_rows.push_back(block_row(c, "ball_vertex_p2 (2x2 blocks)", sm::Ball_vertex_stiffness{2.0}));
+    block_rows.push_back(block_row(c, "ball_vertex_p3 (2x2 blocks)", sm::Ball_vertex_stiffness{3.0}));
     block_rows.push_back(block_row(c, "grid_scaled+ball_vertex", sm::With_ball_vertex<sm::Grid_scaled_stiffness>{}));
   }
   if(wanted(setup, "naca_fine")) {
@@ -1331,7 +1368,14 @@ int main(int argc, char** argv)
 #ifdef SPRING_MOTION_BENCH_HAS_WING
     progress("building (or reading from ./spring_motion_bench_cache) the 3D wing mesh");
     try {
-      rows.push_back(measure(wing_case(setup), bandwidth));
+      const auto c = wing_case(setup);
+      rows.push_back(measure(c, bandwidth));
+      // the robust models' cost on the same mesh: the first steps of the run
+      const std::size_t first = setup.quick ? 3 : 10;
+      wing_block_rows.push_back(block_row(c, "grid-scaled (scalar)", sm::Grid_scaled_stiffness{}, first));
+      wing_block_rows.push_back(block_row(c, "torsional (3x3 blocks)", sm::Torsional_stiffness{}, first));
+      wing_block_rows.push_back(block_row(c, "ball_vertex_p2 (3x3 blocks)", sm::Ball_vertex_stiffness{2.0}, first));
+      wing_block_rows.push_back(block_row(c, "ball_vertex_p3 (3x3 blocks)", sm::Ball_vertex_stiffness{3.0}, first));
     } catch(const std::exception& e) {
       Row r;
       r.name = "wing 3D";
@@ -1362,6 +1406,8 @@ int main(int argc, char** argv)
   print_table(rows);
   if(!block_rows.empty())
     print_block_rows("NACA0012 2D coarse (the paper's mesh)", block_rows);
+  if(!wing_block_rows.empty())
+    print_block_rows("wing 3D, the first steps of the run", wing_block_rows);
   Cli_results cli;
 #ifdef SPRING_MOTION_BENCH_CLI
   if(wanted(setup, "cli")) {
@@ -1369,6 +1415,6 @@ int main(int argc, char** argv)
     print_cli(cli);
   }
 #endif
-  print_targets(rows, cli, setup.quick);
+  print_targets(rows, cli, setup.quick, block_rows, wing_block_rows);
   return 0;
 }

@@ -12,6 +12,9 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace spring_motion;
@@ -108,7 +111,68 @@ struct Truss_3
   Edge_spring_form edge_spring_form() const { return Edge_spring_form::along_edge; }
 };
 
+// An element model that fails on some elements only: it throws on
+// elements whose centroid lies right of x = 0.62, and gives an infinite
+// entry on those above y = 0.71.
+struct Partly_bad_element_model
+{
+  Angle_kind angle_kind(int) const { return Angle_kind::none; }
+  double operator()(double, const double*, std::size_t, const Stiffness_context&) const { return 1.0; }
+  void add_element_matrix(const std::array<std::array<double, 2>, 3>& p, double* K) const
+  {
+    const double x = (p[0][0] + p[1][0] + p[2][0]) / 3, y = (p[0][1] + p[1][1] + p[2][1]) / 3;
+    if(x > 0.62)
+      throw std::runtime_error("poisoned element at " + std::to_string(x) + ", " + std::to_string(y));
+    K[0] += y > 0.71 ? std::numeric_limits<double>::infinity() : 1.0;
+  }
+};
+
 } // namespace
+
+TEST_CASE("thread determinism: of several failing element matrices, the first in element order is reported",
+          "[determinism][errors]")
+{
+  // element matrices are added colour by colour in parallel; the error must
+  // be the one a loop over the elements in order meets first
+  const int n = 12;
+  Indexed_mesh<2> grid;
+  for(int j = 0; j <= n; ++j)
+    for(int i = 0; i <= n; ++i)
+      grid.points.push_back({double(i) / n, double(j) / n});
+  // the elements in a scrambled order, so that element order, colour order
+  // and position disagree
+  std::vector<std::array<Index, 3>> elements;
+  for(int j = 0; j < n; ++j)
+    for(int i = 0; i < n; ++i) {
+      const Index a = Index(j * (n + 1) + i), b = a + 1, c = a + Index(n + 1), d = c + 1;
+      elements.push_back({a, b, d});
+      elements.push_back({a, d, c});
+    }
+  for(std::size_t k = 0; k < elements.size(); ++k)
+    grid.elements.push_back(elements[(k * 37) % elements.size()]);
+  std::string expected;
+  for(std::size_t t = 0; t < grid.elements.size() && expected.empty(); ++t) {
+    const auto& e = grid.elements[t];
+    const auto& p = grid.points;
+    const double x = (p[e[0]][0] + p[e[1]][0] + p[e[2]][0]) / 3, y = (p[e[0]][1] + p[e[1]][1] + p[e[2]][1]) / 3;
+    if(x > 0.62)
+      expected = "poisoned element at " + std::to_string(x) + ", " + std::to_string(y);
+    else if(y > 0.71)
+      expected = "element stiffness of element " + std::to_string(t) + " is not finite";
+  }
+  REQUIRE(!expected.empty());
+  const Index centre = Index((n / 2) * (n + 1) + n / 2);
+  auto roles = [&](const Vertex_info<2>& v) {
+    return v.index == centre ? Vertex_role::moving : (v.on_boundary ? Vertex_role::fixed : Vertex_role::free);
+  };
+  for(int threads : {1, 2}) {
+    INFO(threads << " thread(s)");
+    Deform_options options;
+    options.solver.threads = threads;
+    REQUIRE_THROWS_WITH(deform(grid, roles, Translation_motion<2>{{0.01, 0}}, Partly_bad_element_model{}, options),
+                        Catch::Contains(expected));
+  }
+}
 
 TEST_CASE("thread determinism: 2D NACA0012 pitch, default solver and SOR, 1 vs 2 threads bitwise",
           "[determinism]")
@@ -131,6 +195,10 @@ TEST_CASE("thread determinism: 2D NACA0012 pitch, default solver and SOR, 1 vs 2
   SECTION("torsional springs (block system), default solver")
   {
     compare_threads(net, roles, motion, Solver_options{}, 2, Torsional_stiffness{});
+  }
+  SECTION("ball-vertex springs k = 1/h^2 (block system, rigid-body multigrid), default solver")
+  {
+    compare_threads(net, roles, motion, Solver_options{}, 3, Ball_vertex_stiffness{2.0});
   }
   SECTION("torsional springs (block system), SOR")
   {
@@ -168,5 +236,9 @@ TEST_CASE("thread determinism: 3D structured box, default solver and SOR, 1 vs 2
   SECTION("3x3-block system (springs along their edges), default solver")
   {
     compare_threads(net, roles, motion, Solver_options{}, 2, Truss_3{});
+  }
+  SECTION("ball-vertex springs k = 1/h^2 (3x3 blocks, rigid-body multigrid), default solver")
+  {
+    compare_threads(net, roles, motion, Solver_options{}, 2, Ball_vertex_stiffness{2.0});
   }
 }

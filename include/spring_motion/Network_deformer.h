@@ -451,6 +451,7 @@ private:
     else
       solver_.load_scalar(net_, stiffness_, threads);
     solver_.set_start(delta_, threads);
+    solver_.set_positions(positions_);
     s.seconds_stiffness += seconds_since(t0);
 
     Step_system_view<D> view;

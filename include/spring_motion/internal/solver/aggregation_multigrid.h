@@ -4,7 +4,6 @@
 
 #include <spring_motion/Error.h>
 #include <spring_motion/Spring_network.h>
-#include <spring_motion/internal/solver/block_ops.h>
 
 #include <algorithm>
 #include <array>
@@ -19,9 +18,7 @@ namespace internal {
 /// entries apart from the diagonal. Scalar (`block == false`): one value per
 /// entry, the same for each of the D components (edge models: the matrix is
 /// a spring Laplacian, off-diagonal entries -k). Block: a D x D row-major
-/// block per entry and per diagonal (element models). Summing a level over
-/// aggregates (a Galerkin product with a piecewise-constant prolongation)
-/// keeps its form, scalar or block.
+/// block per entry and per diagonal (element models).
 struct Csr_view
 {
   std::size_t rows = 0;
@@ -41,13 +38,112 @@ struct Multigrid_parameters
   std::size_t max_direct_rows = 256;
 };
 
-/// The coarse levels of a multigrid cycle for the spring system, built by
+/// Unknowns grouped into aggregates, and the next level's pattern: the
+/// aggregate pairs joined by an entry of the finer level.
+struct Aggregates
+{
+  std::size_t count = 0;
+  std::vector<Index> parent_of; // finer unknown -> aggregate
+  std::vector<Index> slot_of;   // finer off-diagonal entry -> coarse entry, or none (inside an aggregate)
+  std::vector<Index> offsets, col;
+};
+
+/// Greedy aggregation (Vanek, Mandel and Brezina) of the n unknowns of a
+/// compressed-row pattern: j is a strong neighbour of i when entry q = (i, j)
+/// has coupling[q] >= strength sqrt(scale[i] scale[j]). An unknown whose
+/// strong neighbours are all free seeds an aggregate with them; the rest join
+/// the aggregate they are most strongly coupled to, or group what is left.
+/// False when that would remove less than 20% of the unknowns.
+inline bool aggregate_strong_neighbours(std::size_t n, const Index* offsets, const Index* col,
+                                        const std::vector<double>& scale, const std::vector<double>& coupling,
+                                        double strength, Aggregates& g)
+{
+  constexpr Index none = std::numeric_limits<Index>::max();
+  auto strong = [&](std::size_t i, Index q) {
+    const Index j = col[q];
+    return coupling[q] >= strength * std::sqrt(scale[i] * scale[j]);
+  };
+  std::vector<Index> agg(n, none);
+  Index count = 0;
+  for(std::size_t i = 0; i < n; ++i) {
+    if(agg[i] != none)
+      continue;
+    bool seed = true, any = false;
+    for(Index q = offsets[i]; q < offsets[i + 1]; ++q)
+      if(strong(i, q)) {
+        any = true;
+        if(agg[col[q]] != none) {
+          seed = false;
+          break;
+        }
+      }
+    if(!seed || !any)
+      continue;
+    agg[i] = count;
+    for(Index q = offsets[i]; q < offsets[i + 1]; ++q)
+      if(strong(i, q))
+        agg[col[q]] = count;
+    ++count;
+  }
+  // join the most strongly coupled aggregate of the first pass
+  const std::vector<Index> first = agg;
+  for(std::size_t i = 0; i < n; ++i) {
+    if(agg[i] != none)
+      continue;
+    double best = 0;
+    for(Index q = offsets[i]; q < offsets[i + 1]; ++q)
+      if(first[col[q]] != none && strong(i, q) && coupling[q] > best) {
+        best = coupling[q];
+        agg[i] = first[col[q]];
+      }
+  }
+  for(std::size_t i = 0; i < n; ++i) {
+    if(agg[i] != none)
+      continue;
+    agg[i] = count;
+    for(Index q = offsets[i]; q < offsets[i + 1]; ++q)
+      if(agg[col[q]] == none && strong(i, q))
+        agg[col[q]] = count;
+    ++count;
+  }
+  if(std::size_t(count) * 5 > n * 4) // less than 20% fewer unknowns: not worth a level
+    return false;
+  g.count = count;
+  g.parent_of = std::move(agg);
+  // coarse pattern: the aggregate pairs joined by a fine entry
+  std::vector<std::vector<Index>> members(count);
+  for(std::size_t i = 0; i < n; ++i)
+    members[g.parent_of[i]].push_back(Index(i));
+  g.offsets.assign(std::size_t(count) + 1, 0);
+  g.col.clear();
+  g.slot_of.assign(offsets[n], none);
+  std::vector<Index> slot(count, none);
+  for(Index A = 0; A < count; ++A) {
+    const Index begin = Index(g.col.size());
+    for(Index i : members[A])
+      for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
+        const Index B = g.parent_of[col[q]];
+        if(B == A)
+          continue;
+        if(slot[B] == none || slot[B] < begin) {
+          slot[B] = Index(g.col.size());
+          g.col.push_back(B);
+        }
+        g.slot_of[q] = slot[B];
+      }
+    g.offsets[A + 1] = Index(g.col.size());
+  }
+  return true;
+}
+
+/// The coarse levels of a multigrid cycle for a scalar spring system (edge
+/// models: one value per entry, the same for the D components), built by
 /// plain (unsmoothed) aggregation: the unknowns (vertices) of a level are
 /// grouped into aggregates of strongly coupled neighbours, each aggregate is
 /// one unknown of the next level, and the next level's matrix is the sum of
-/// the level's matrix over aggregate pairs (P^T A P with P piecewise constant,
-/// the same for the D components: for block systems each coarse entry is the
-/// sum of D x D blocks). The aggregates are chosen once, from the first
+/// the level's matrix over aggregate pairs (P^T A P with P piecewise
+/// constant). Block systems take Rigid_body_multigrid, whose coarse functions
+/// also rotate each aggregate. The aggregates are chosen once, from the first
 /// system's values; the values are summed again for every new system
 /// (`load`), which costs one pass over the fine pattern. The coarsest level is
 /// solved by a dense Cholesky factorisation.
@@ -60,11 +156,10 @@ class Aggregation_multigrid
 {
 public:
   using Row = std::array<double, D>;
-  static constexpr int DD = D * D;
   static_assert(sizeof(Row) == D * sizeof(double), "a vector of rows is read as one flat array");
 
   /// strength of connection: j is a strong neighbour of i when
-  /// |A_ij| >= strength sqrt(|A_ii| |A_jj|) (Frobenius norms for blocks);
+  /// -A_ij >= strength sqrt(A_ii A_jj);
   /// the coarse correction is scaled by `correction`: over-correction makes
   /// up for the too-high energy of piecewise-constant coarse functions; a
   /// level with at most `coarsest_rows` unknowns is the coarsest, solved
@@ -79,12 +174,12 @@ public:
   /// Chooses the aggregates of every level from the fine matrix.
   void build(const Csr_view& fine)
   {
+    SPRING_MOTION_CHECK(!fine.block, "aggregation multigrid: a block system takes Rigid_body_multigrid");
     levels_.clear();
     built_ = true;
     Csr_view v = fine;
     while(v.rows > parameters.coarsest_rows) {
       Level L;
-      L.block = fine.block;
       if(!aggregate(v, L))
         break; // no coarsening possible (no couplings): stop here
       levels_.push_back(std::move(L));
@@ -133,113 +228,38 @@ public:
 private:
   struct Level
   {
-    bool block = false;
     std::size_t n = 0;                  // unknowns of this level
     std::vector<Index> parent_of;       // finer unknown -> aggregate (this level's unknown)
     std::vector<Index> slot_of;         // finer off-diagonal entry -> entry here, or none (inside an aggregate)
     std::vector<Index> offsets, col;    // this level's pattern
-    std::vector<double> values, diag, inv_diag; // 1 or D*D per entry / row
+    std::vector<double> values, diag, inv_diag; // per entry / row
     std::vector<Row> rhs, z;
-    Csr_view view() const { return {n, offsets.data(), col.data(), values.data(), diag.data(), block}; }
+    Csr_view view() const { return {n, offsets.data(), col.data(), values.data(), diag.data(), false}; }
   };
 
   static constexpr Index none = std::numeric_limits<Index>::max();
 
-  // Greedy aggregation (Vanek, Mandel and Brezina): an unknown whose strong
-  // neighbours are all free seeds an aggregate with them; the rest join the
-  // aggregate they are most strongly coupled to, or group what is left.
+  // the aggregates of level a (the next level's unknowns and pattern)
   bool aggregate(const Csr_view& a, Level& L) const
   {
     const std::size_t n = a.rows;
-    // coupling of entry q and scale of row i: -A_ij and A_ii for scalar
-    // systems (a spring Laplacian), Frobenius norms for block systems
-    std::vector<double> scale(n), coupling(a.offsets[n]);
-    for(std::size_t i = 0; i < n; ++i) {
-      scale[i] = a.block ? block_norm<D>(a.diag + i * DD) : a.diag[i];
-      for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
-        coupling[q] = a.block ? block_norm<D>(a.values + std::size_t(q) * DD) : -a.values[q];
-    }
-    const double strength = parameters.strength;
-    auto strong = [&](std::size_t i, Index q) {
-      const Index j = a.col[q];
-      return coupling[q] >= strength * std::sqrt(scale[i] * scale[j]);
-    };
-    std::vector<Index> agg(n, none);
-    Index count = 0;
-    for(std::size_t i = 0; i < n; ++i) {
-      if(agg[i] != none)
-        continue;
-      bool seed = true, any = false;
-      for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
-        if(strong(i, q)) {
-          any = true;
-          if(agg[a.col[q]] != none) {
-            seed = false;
-            break;
-          }
-        }
-      if(!seed || !any)
-        continue;
-      agg[i] = count;
-      for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
-        if(strong(i, q))
-          agg[a.col[q]] = count;
-      ++count;
-    }
-    // join the most strongly coupled aggregate of the first pass
-    const std::vector<Index> first = agg;
-    for(std::size_t i = 0; i < n; ++i) {
-      if(agg[i] != none)
-        continue;
-      double best = 0;
-      for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
-        if(first[a.col[q]] != none && strong(i, q) && coupling[q] > best) {
-          best = coupling[q];
-          agg[i] = first[a.col[q]];
-        }
-    }
-    for(std::size_t i = 0; i < n; ++i) {
-      if(agg[i] != none)
-        continue;
-      agg[i] = count;
-      for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
-        if(agg[a.col[q]] == none && strong(i, q))
-          agg[a.col[q]] = count;
-      ++count;
-    }
-    if(std::size_t(count) * 5 > n * 4) // less than 20% fewer unknowns: not worth a level
+    // coupling of entry q and scale of row i: -A_ij and A_ii (a spring Laplacian)
+    std::vector<double> scale(a.diag, a.diag + n), coupling(a.offsets[n]);
+    for(Index q = 0; q < a.offsets[n]; ++q)
+      coupling[q] = -a.values[q];
+    Aggregates g;
+    if(!aggregate_strong_neighbours(n, a.offsets, a.col, scale, coupling, parameters.strength, g))
       return false;
-    L.n = count;
-    L.parent_of = std::move(agg);
-    // coarse pattern: the aggregate pairs joined by a fine entry
-    std::vector<std::vector<Index>> members(count);
-    for(std::size_t i = 0; i < n; ++i)
-      members[L.parent_of[i]].push_back(Index(i));
-    L.offsets.assign(std::size_t(count) + 1, 0);
-    L.col.clear();
-    L.slot_of.assign(a.offsets[n], none);
-    std::vector<Index> slot(count, none);
-    for(Index A = 0; A < count; ++A) {
-      const Index begin = Index(L.col.size());
-      for(Index i : members[A])
-        for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q) {
-          const Index B = L.parent_of[a.col[q]];
-          if(B == A)
-            continue;
-          if(slot[B] == none || slot[B] < begin) {
-            slot[B] = Index(L.col.size());
-            L.col.push_back(B);
-          }
-          L.slot_of[q] = slot[B];
-        }
-      L.offsets[A + 1] = Index(L.col.size());
-    }
-    const std::size_t w = L.block ? DD : 1;
-    L.values.resize(L.col.size() * w);
-    L.diag.resize(count * w);
-    L.inv_diag.resize(count * w);
-    L.rhs.resize(count);
-    L.z.resize(count);
+    L.n = g.count;
+    L.parent_of = std::move(g.parent_of);
+    L.slot_of = std::move(g.slot_of);
+    L.offsets = std::move(g.offsets);
+    L.col = std::move(g.col);
+    L.values.resize(L.col.size());
+    L.diag.resize(L.n);
+    L.inv_diag.resize(L.n);
+    L.rhs.resize(L.n);
+    L.z.resize(L.n);
     return true;
   }
 
@@ -250,59 +270,38 @@ private:
   {
     std::fill(L.values.begin(), L.values.end(), 0.0);
     std::fill(L.diag.begin(), L.diag.end(), 0.0);
-    if(!a.block) {
-      for(std::size_t i = 0; i < a.rows; ++i) {
-        const Index A = L.parent_of[i];
-        double d = a.diag[i];
-        for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q) {
-          const Index s = L.slot_of[q];
-          if(s == none)
-            d += a.values[q];
-          else
-            L.values[s] += a.values[q];
-        }
-        L.diag[A] += d;
-      }
-      for(std::size_t A = 0; A < L.n; ++A) {
-        SPRING_MOTION_CHECK(L.diag[A] > 0, "multigrid: a coarse diagonal is not positive (" << L.diag[A] << ")");
-        L.inv_diag[A] = 1.0 / L.diag[A];
-      }
-      return;
-    }
     for(std::size_t i = 0; i < a.rows; ++i) {
-      double* dA = &L.diag[std::size_t(L.parent_of[i]) * DD];
-      for(int k = 0; k < DD; ++k)
-        dA[k] += a.diag[i * DD + std::size_t(k)];
+      const Index A = L.parent_of[i];
+      double d = a.diag[i];
       for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q) {
         const Index s = L.slot_of[q];
-        double* dst = s == none ? dA : &L.values[std::size_t(s) * DD];
-        for(int k = 0; k < DD; ++k)
-          dst[k] += a.values[std::size_t(q) * DD + std::size_t(k)];
+        if(s == none)
+          d += a.values[q];
+        else
+          L.values[s] += a.values[q];
       }
+      L.diag[A] += d;
     }
-    for(std::size_t A = 0; A < L.n; ++A)
-      SPRING_MOTION_CHECK(invert_block<D>(&L.diag[A * DD], &L.inv_diag[A * DD]),
-                          "multigrid: a coarse diagonal block is singular");
+    for(std::size_t A = 0; A < L.n; ++A) {
+      SPRING_MOTION_CHECK(L.diag[A] > 0, "multigrid: a coarse diagonal is not positive (" << L.diag[A] << ")");
+      L.inv_diag[A] = 1.0 / L.diag[A];
+    }
   }
 
-  // dense Cholesky of the coarsest level (the fine matrix itself when no
-  // level was built: then the caller never cycles); scalar levels factor the
-  // n x n matrix shared by the components, block levels the nD x nD one
+  // dense Cholesky of the coarsest level's n x n matrix, shared by the D
+  // components (the fine matrix itself when no level was built: then the
+  // caller never cycles)
   void factor_coarsest(const Csr_view& a)
   {
     if(levels_.empty() || a.rows > parameters.max_direct_rows)
       return;
-    const std::size_t w = a.block ? D : 1;
-    const std::size_t n = a.rows * w;
+    const std::size_t n = a.rows;
     chol_.assign(n * n, 0.0);
-    for(std::size_t i = 0; i < a.rows; ++i)
-      for(std::size_t r = 0; r < w; ++r) {
-        for(std::size_t c = 0; c < w; ++c)
-          chol_[(i * w + r) * n + i * w + c] = a.diag[(i * w + r) * w + c];
-        for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
-          for(std::size_t c = 0; c < w; ++c)
-            chol_[(i * w + r) * n + a.col[q] * w + c] += a.values[(std::size_t(q) * w + r) * w + c];
-      }
+    for(std::size_t i = 0; i < n; ++i) {
+      chol_[i * n + i] = a.diag[i];
+      for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
+        chol_[i * n + a.col[q]] += a.values[q];
+    }
     for(std::size_t j = 0; j < n; ++j) {
       double d = chol_[j * n + j];
       for(std::size_t k = 0; k < j; ++k)
@@ -321,24 +320,6 @@ private:
 
   void solve_coarsest(Level& L) const
   {
-    if(L.block) { // one right-hand side of length nD: the rows' components in turn
-      const std::size_t n = L.n * D;
-      double* z = L.z[0].data();
-      const double* b = L.rhs[0].data();
-      for(std::size_t i = 0; i < n; ++i) {
-        double s = b[i];
-        for(std::size_t k = 0; k < i; ++k)
-          s -= chol_[i * n + k] * z[k];
-        z[i] = s / chol_[i * n + i];
-      }
-      for(std::size_t ii = n; ii-- > 0;) {
-        double s = z[ii];
-        for(std::size_t k = ii + 1; k < n; ++k)
-          s -= chol_[k * n + ii] * z[k];
-        z[ii] = s / chol_[ii * n + ii];
-      }
-      return;
-    }
     const std::size_t n = L.n;
     for(std::size_t i = 0; i < n; ++i) {
       Row s = L.rhs[i];
@@ -362,13 +343,9 @@ private:
   static Row off_residual(const Level& L, std::size_t i)
   {
     Row s = L.rhs[i];
-    if(L.block)
-      for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
-        subtract_block_product<D>(s, &L.values[std::size_t(q) * DD], L.z[L.col[q]]);
-    else
-      for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
-        for(int c = 0; c < D; ++c)
-          s[c] -= L.values[q] * L.z[L.col[q]][c];
+    for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
+      for(int c = 0; c < D; ++c)
+        s[c] -= L.values[q] * L.z[L.col[q]][c];
     return s;
   }
 
@@ -377,11 +354,8 @@ private:
     for(std::size_t kk = 0; kk < L.n; ++kk) {
       const std::size_t i = forward ? kk : L.n - 1 - kk;
       const Row s = off_residual(L, i);
-      if(L.block)
-        L.z[i] = block_product<D>(&L.inv_diag[i * DD], s);
-      else
-        for(int c = 0; c < D; ++c)
-          L.z[i][c] = s[c] * L.inv_diag[i];
+      for(int c = 0; c < D; ++c)
+        L.z[i][c] = s[c] * L.inv_diag[i];
     }
   }
 
@@ -405,11 +379,9 @@ private:
     Level& C = levels_[l + 1];
     std::fill(C.rhs.begin(), C.rhs.end(), Row{});
     for(std::size_t i = 0; i < L.n; ++i) {
-      Row s = off_residual(L, i);
-      if(L.block)
-        subtract_block_product<D>(s, &L.diag[i * DD], L.z[i]);
+      const Row s = off_residual(L, i);
       for(int c = 0; c < D; ++c)
-        C.rhs[C.parent_of[i]][c] += L.block ? s[c] : s[c] - L.diag[i] * L.z[i][c];
+        C.rhs[C.parent_of[i]][c] += s[c] - L.diag[i] * L.z[i][c];
     }
     cycle(l + 1);
     for(std::size_t i = 0; i < L.n; ++i)

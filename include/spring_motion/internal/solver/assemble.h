@@ -13,6 +13,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
+#include <limits>
+#include <string>
 #include <vector>
 
 namespace spring_motion {
@@ -135,38 +138,65 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   }
 }
 
-// Element matrices in element order, one thread: two elements share
-// blocks, and a fixed order keeps the sums independent of the thread count.
+// Element matrices colour by colour (Free_system::element_colours): the
+// elements of a colour share no free vertex, so they are added in parallel,
+// and each block gets its contributions in colour order whatever the thread
+// count. An element whose matrix throws or is not finite stops the step with
+// the error of the first such element in network order, as a serial loop would.
 template <int D, class Model>
 void add_element_matrices(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
-                          const Model& model, Free_system<D>& fs)
+                          const Model& model, Free_system<D>& fs, int threads)
 {
   constexpr int DD = D * D;
   constexpr int ND = (D + 1) * D;
   double* blocks = fs.block_values();
   const auto& elements = fs.assembled_elements();
   const auto& dest = fs.element_destinations();
-  std::array<double, ND * ND> Ke;
-  for(std::size_t s = 0; s < elements.size(); ++s) {
-    const std::size_t t = elements[s];
-    Ke.fill(0.0);
-    model.add_element_matrix(element_points<D>(net.elements, x, t), Ke.data());
-    // all of it, rows of constrained vertices too: a model that breaks there
-    // breaks elsewhere on another step
-    for(double v : Ke)
-      SPRING_MOTION_ELEMENT_CHECK(std::isfinite(v), t, "element stiffness of element " << t << " is not finite");
-    for(int a = 0; a <= D; ++a)
-      for(int b = 0; b <= D; ++b) {
-        const Index to = dest[(s * (D + 1) + std::size_t(a)) * (D + 1) + std::size_t(b)];
-        if(to == Free_system<D>::none)
-          continue;
-        double* out = blocks + std::size_t(to) * DD;
-        for(int r = 0; r < D; ++r)
-          for(int c = 0; c < D; ++c) {
-            out[r * D + c] += Ke[std::size_t((a * D + r) * ND + (b * D + c))];
-          }
+  const auto& colours = fs.element_colours();
+  const int nt = internal::thread_count(threads, elements.size());
+  constexpr long no_error = std::numeric_limits<long>::max();
+  long first_bad = no_error; // the smallest network element whose matrix failed
+  std::exception_ptr error;
+  for(std::size_t c = 0; c + 1 < colours.size(); ++c) {
+    const long begin = long(colours[c]), end = long(colours[c + 1]);
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long s = begin; s < end; ++s) {
+      const std::size_t t = elements[std::size_t(s)];
+      std::array<double, ND * ND> Ke;
+      Ke.fill(0.0);
+      bool finite = true;
+      try {
+        model.add_element_matrix(element_points<D>(net.elements, x, t), Ke.data());
+        // all of it, rows of constrained vertices too: a model that breaks
+        // there breaks elsewhere on another step
+        for(double v : Ke)
+          finite = finite && std::isfinite(v);
+        if(!finite)
+          throw_indexed_error<Element_error>(__FILE__, __LINE__,
+                                             "element stiffness of element " + std::to_string(t) + " is not finite",
+                                             t);
+      } catch(...) {
+#pragma omp critical(spring_motion_element_matrix_error)
+        if(long(t) < first_bad) {
+          first_bad = long(t);
+          error = std::current_exception();
+        }
+        continue;
       }
+      for(int a = 0; a <= D; ++a)
+        for(int b = 0; b <= D; ++b) {
+          const Index to = dest[(std::size_t(s) * (D + 1) + std::size_t(a)) * (D + 1) + std::size_t(b)];
+          if(to == Free_system<D>::none)
+            continue;
+          double* out = blocks + std::size_t(to) * DD;
+          for(int r = 0; r < D; ++r)
+            for(int cc = 0; cc < D; ++cc)
+              out[r * D + cc] += Ke[std::size_t((a * D + r) * ND + (b * D + cc))];
+        }
+    }
   }
+  if(error)
+    std::rethrow_exception(error);
 }
 
 /// Fills the block system `fs` (element models, or any model with sliding
@@ -236,7 +266,7 @@ void assemble_block_system(const Spring_network<D>& net, const std::vector<typen
       spring(bnd_edge[q], i, bnd_vertex[q], blocks + fs.bnd_block(q) * DD, diag);
   }
   if constexpr(Is_element_model<Model, D>::value)
-    add_element_matrices(net, x, model, fs);
+    add_element_matrices(net, x, model, fs, threads);
   fs.apply_projectors(threads);
   fs.finish_block_load(threads);
 }

@@ -44,6 +44,47 @@ inline bool invert_block(const double* m, double* r)
   return std::isfinite(bound);
 }
 
+/// The inverse of the symmetric N x N row-major block m by Cholesky's
+/// factorisation, or false when a pivot is not positive beyond rounding
+/// (below 1e-12 of its diagonal entry): m is not positive definite.
+template <int N>
+inline bool invert_spd_block(const double* m, double* r)
+{
+  double l[N * N] = {};
+  for(int j = 0; j < N; ++j) {
+    double d = m[j * N + j];
+    for(int k = 0; k < j; ++k)
+      d -= l[j * N + k] * l[j * N + k];
+    if(!(std::isfinite(d) && d > 1e-12 * m[j * N + j]))
+      return false;
+    l[j * N + j] = std::sqrt(d);
+    for(int i = j + 1; i < N; ++i) {
+      double s = m[i * N + j];
+      for(int k = 0; k < j; ++k)
+        s -= l[i * N + k] * l[j * N + k];
+      l[i * N + j] = s / l[j * N + j];
+    }
+  }
+  for(int c = 0; c < N; ++c) { // column c of the inverse: L L^T x = e_c
+    double y[N];
+    for(int i = 0; i < N; ++i) {
+      double s = i == c ? 1.0 : 0.0;
+      for(int k = 0; k < i; ++k)
+        s -= l[i * N + k] * y[k];
+      y[i] = s / l[i * N + i];
+    }
+    for(int i = N; i-- > 0;) {
+      double s = y[i];
+      for(int k = i + 1; k < N; ++k)
+        s -= l[k * N + i] * y[k];
+      y[i] = s / l[i * N + i];
+    }
+    for(int i = 0; i < N; ++i)
+      r[i * N + c] = y[i];
+  }
+  return true;
+}
+
 /// Frobenius norm of a D x D block: the strength of a block coupling.
 template <int D>
 inline double block_norm(const double* m)

@@ -6,6 +6,7 @@
 #include <spring_motion/Solver_options.h>
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/internal/solver/aggregation_multigrid.h>
+#include <spring_motion/internal/solver/rigid_body_multigrid.h>
 #include <spring_motion/internal/solver/block_ops.h>
 #include <spring_motion/internal/solver/stopping_test.h>
 #include <spring_motion/internal/solver/threads.h>
@@ -75,9 +76,14 @@ public:
   const std::vector<Index>& bnd_edges() const { return bnd_edge_; }
   /// block systems: the elements (all), and for each of them
   /// (D+1)^2 destinations of its element matrix's blocks (a, b) in
-  /// block_values() (in blocks of D*D), `none` for rows of constrained vertices
+  /// block_values() (in blocks of D*D), `none` for rows of constrained vertices.
+  /// The elements are grouped by colour: no two elements of a colour share a
+  /// free vertex, so a colour's matrices can be added in parallel, and every
+  /// block receives its contributions colour by colour, in the same order
+  /// for any thread count. Colour c is elements [element_colours()[c], [c + 1)).
   const std::vector<Index>& assembled_elements() const { return elements_; }
   const std::vector<Index>& element_destinations() const { return element_dest_; }
+  const std::vector<Index>& element_colours() const { return element_colour_offsets_; }
   /// block systems: diagonal blocks (rows), then the off-diagonal blocks
   /// (nonzeros), then the blocks coupling rows to constrained vertices
   double* block_values() { return blocks_.data(); }
@@ -120,6 +126,8 @@ public:
     multigrid_ = Aggregation_multigrid<D>();
     multigrid_.parameters = {o.multigrid_strength, o.multigrid_correction, o.multigrid_coarsest_rows,
                              o.multigrid_max_direct_rows};
+    rigid_ = Rigid_body_multigrid<D>();
+    rigid_.parameters = multigrid_.parameters;
     const std::size_t n = net.number_of_vertices();
     const std::size_t nf = free_vertices.size();
     std::vector<Index> row_of(n, none);
@@ -153,6 +161,7 @@ public:
     }
     elements_.clear();
     element_dest_.clear();
+    element_colour_offsets_.clear();
     val_.clear();
     bnd_val_.clear();
     diag_.clear();
@@ -373,8 +382,15 @@ public:
     return block_ ? solve_conjugate_gradient<true>(options) : solve_conjugate_gradient<false>(options);
   }
 
-  /// The multigrid levels of the last multigrid-preconditioned solve.
+  /// The multigrid levels of the last multigrid-preconditioned solve: of a
+  /// scalar system, and of a block system.
   const Aggregation_multigrid<D>& multigrid() const { return multigrid_; }
+  const Rigid_body_multigrid<D>& rigid_body_multigrid() const { return rigid_; }
+
+  /// The positions of the network's vertices, whose rigid motions a block
+  /// system's multigrid builds its coarse levels from; read at every solve,
+  /// so they must outlive the solver's use.
+  void set_positions(const std::vector<Row>& positions) { positions_ = &positions; }
 
 private:
   int team(int threads) const { return thread_count(threads, order_.size()); }
@@ -473,13 +489,50 @@ private:
   // For every element, where each of its (D+1)^2 blocks
   // goes: a diagonal block, an off-diagonal one, a coupling to a constrained
   // vertex, or nowhere (a constrained vertex's row).
+  // Greedy colouring of the elements in their order: each takes the first
+  // colour none of the elements at its free vertices has taken.
+  std::vector<Index> element_colouring(const Spring_network<D>& net, const std::vector<Index>& row_of)
+  {
+    const std::size_t ne = net.number_of_elements();
+    std::vector<std::vector<Index>> taken(order_.size()); // per free row: colours of its elements
+    std::vector<Index> colour(ne), seen;                  // seen[c] == t + 1: c is forbidden for t
+    for(std::size_t t = 0; t < ne; ++t) {
+      for(Index v : net.elements[t])
+        if(row_of[v] != none)
+          for(Index c : taken[row_of[v]]) {
+            if(c >= seen.size())
+              seen.resize(std::size_t(c) + 1, 0);
+            seen[c] = Index(t + 1);
+          }
+      Index c = 0;
+      while(c < seen.size() && seen[c] == Index(t + 1))
+        ++c;
+      colour[t] = c;
+      for(Index v : net.elements[t])
+        if(row_of[v] != none)
+          taken[row_of[v]].push_back(c);
+    }
+    return colour;
+  }
+
   void element_destinations(const Spring_network<D>& net, const std::vector<Index>& row_of)
   {
-    for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
+    const std::vector<Index> colour = element_colouring(net, row_of);
+    const Index colours = colour.empty() ? 0 : *std::max_element(colour.begin(), colour.end()) + 1;
+    element_colour_offsets_.assign(std::size_t(colours) + 1, 0);
+    for(Index c : colour)
+      ++element_colour_offsets_[std::size_t(c) + 1];
+    std::partial_sum(element_colour_offsets_.begin(), element_colour_offsets_.end(), element_colour_offsets_.begin());
+    elements_.resize(colour.size());
+    {
+      std::vector<Index> next(element_colour_offsets_.begin(), element_colour_offsets_.end() - 1);
+      for(std::size_t t = 0; t < colour.size(); ++t)
+        elements_[next[colour[t]]++] = Index(t);
+    }
+    for(const Index t : elements_) {
       // every element, those with no free vertex too: their matrices go
       // nowhere, but computing them checks the model everywhere, every step
       const auto& el = net.elements[t];
-      elements_.push_back(Index(t));
       for(int a = 0; a <= D; ++a)
         for(int b = 0; b <= D; ++b) {
           const Index r = row_of[el[std::size_t(a)]];
@@ -649,13 +702,25 @@ private:
     Stopping_test stop(options);
     const bool mg = options.preconditioner == Preconditioner::multigrid;
     multigrid_.parameters.correction = options.multigrid_correction; // used per cycle only
+    rigid_.parameters.correction = options.multigrid_correction;
     if(mg && r_max > 0 && nf > 0) {
       const Csr_view fine{order_.size(), row_offsets_.data(), col_.data(), values(), diagonal(), B};
-      if(!multigrid_.built())
-        multigrid_.build(fine);
-      multigrid_.load(fine);
+      if constexpr(B) {
+        SPRING_MOTION_CHECK(positions_ && positions_->size() > *std::max_element(order_.begin(), order_.end()),
+                            "the block system's multigrid needs the vertices' positions (set_positions)");
+        row_points_.resize(order_.size());
+        for(std::size_t r = 0; r < order_.size(); ++r)
+          row_points_[r] = (*positions_)[order_[r]];
+        if(!rigid_.built())
+          rigid_.build(fine, row_points_.data());
+        rigid_.load(fine, row_points_.data());
+      } else {
+        if(!multigrid_.built())
+          multigrid_.build(fine);
+        multigrid_.load(fine);
+      }
     }
-    const bool cycle = mg && multigrid_.number_of_levels() > 0;
+    const bool cycle = mg && (B ? rigid_.number_of_levels() : multigrid_.number_of_levels()) > 0;
     if(r_max > 0 && nf > 0) {
       precondition<B>(options.preconditioner_relaxation_factor, threads, cycle);
       copy(z_, p_, threads);
@@ -711,31 +776,64 @@ private:
       z_[std::size_t(k)] = Row{};
     sweep<B>(z_, r_, omega, threads, true, false);
     if(multigrid)
-      coarse_correction<B>(threads);
+      coarse_correction<B>(threads, omega == 1);
     sweep<B>(z_, r_, omega, threads, false, false);
   }
 
-  // z += correction P cycle(P^T (r - A z))
+  // z += correction P cycle(P^T (r - A z)). After a forward Gauss-Seidel
+  // sweep from z = 0 (`after_gauss_seidel`), row k's equation holds with the
+  // rows after it still at zero, so r - A z is -(sum over j > k of A_kj z_j):
+  // the rows are numbered in sweep order (the rows of other blocks of k's
+  // colour are not its neighbours), and half the matrix is read.
   template <bool B>
-  void coarse_correction(int threads)
+  void coarse_correction(int threads, bool after_gauss_seidel)
   {
     const int nt = team(threads);
     const long nf = long(order_.size());
     s_.resize(order_.size());
+    if(after_gauss_seidel) {
 #pragma omp parallel for schedule(static) num_threads(nt)
-    for(long k = 0; k < nf; ++k) {
-      const Row y = apply<B>(z_, std::size_t(k));
-      for(int c = 0; c < D; ++c)
-        s_[std::size_t(k)][c] = r_[std::size_t(k)][c] - y[c];
+      for(long k = 0; k < nf; ++k) {
+        Row s{};
+        for(Index q = row_offsets_[std::size_t(k)]; q < row_offsets_[std::size_t(k) + 1]; ++q) {
+          const Index j = col_[q];
+          if(long(j) <= k)
+            continue;
+          if constexpr(B)
+            subtract_block_product<D>(s, &blocks_[off_block(q) * DD], z_[j]);
+          else
+            for(int c = 0; c < D; ++c)
+              s[c] -= val_[q] * z_[j][c];
+        }
+        s_[std::size_t(k)] = s;
+      }
+    } else {
+#pragma omp parallel for schedule(static) num_threads(nt)
+      for(long k = 0; k < nf; ++k) {
+        const Row y = apply<B>(z_, std::size_t(k));
+        for(int c = 0; c < D; ++c)
+          s_[std::size_t(k)][c] = r_[std::size_t(k)][c] - y[c];
+      }
     }
-    multigrid_.restrict_from(s_);
-    multigrid_.cycle();
     const double a = multigrid_.parameters.correction;
+    if constexpr(B) {
+      rigid_.restrict_from(s_);
+      rigid_.cycle();
 #pragma omp parallel for schedule(static) num_threads(nt)
-    for(long k = 0; k < nf; ++k) {
-      const Row& e = multigrid_.coarse_solution(multigrid_.parent(std::size_t(k)));
-      for(int c = 0; c < D; ++c)
-        z_[std::size_t(k)][c] += a * e[c];
+      for(long k = 0; k < nf; ++k) {
+        const Row e = rigid_.correction(std::size_t(k));
+        for(int c = 0; c < D; ++c)
+          z_[std::size_t(k)][c] += a * e[c];
+      }
+    } else {
+      multigrid_.restrict_from(s_);
+      multigrid_.cycle();
+#pragma omp parallel for schedule(static) num_threads(nt)
+      for(long k = 0; k < nf; ++k) {
+        const Row& e = multigrid_.coarse_solution(multigrid_.parent(std::size_t(k)));
+        for(int c = 0; c < D; ++c)
+          z_[std::size_t(k)][c] += a * e[c];
+      }
     }
   }
 
@@ -871,12 +969,15 @@ private:
   std::vector<Index> order_, block_offsets_, colour_offsets_; // colour_offsets_: into the blocks
   std::vector<Index> row_offsets_, col_, edge_;
   std::vector<Index> bnd_offsets_, bnd_vertex_, bnd_edge_;
-  std::vector<Index> elements_, element_dest_;
+  std::vector<Index> elements_, element_dest_, element_colour_offsets_;
   std::vector<Index> projector_of_row_;          // empty, or one per row: into projectors_ or none
   std::vector<std::array<double, DD>> projectors_;
   std::vector<double> val_, bnd_val_, diag_, inv_diag_, blocks_, partial_;
   std::vector<Row> b_, x_, r_, z_, p_, q_, s_;
   Aggregation_multigrid<D> multigrid_;
+  Rigid_body_multigrid<D> rigid_;
+  const std::vector<Row>* positions_ = nullptr;
+  std::vector<Row> row_points_;
 };
 
 } // namespace internal

@@ -1,0 +1,447 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_INTERNAL_SOLVER_RIGID_BODY_MULTIGRID_H
+#define SPRING_MOTION_INTERNAL_SOLVER_RIGID_BODY_MULTIGRID_H
+
+#include <spring_motion/Error.h>
+#include <spring_motion/Spring_network.h>
+#include <spring_motion/internal/solver/aggregation_multigrid.h>
+#include <spring_motion/internal/solver/block_ops.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace spring_motion {
+namespace internal {
+
+/// The coarse levels of a multigrid cycle for block (element-model) systems,
+/// whose coarse functions move each aggregate as a rigid body: D
+/// translations and D(D-1)/2 rotations about its centre per coarse unknown.
+///
+/// Ball-vertex, torsional and truss springs resist a change of shape, not a
+/// rotation: the linearised energy of an infinitesimal rotation of a group of
+/// vertices is zero inside the group. Where the stiffness grows fast towards
+/// the body (k = 1/h^2, 1/h^3), the small elements there turn almost rigidly
+/// and a coarse space of translations only (Aggregation_multigrid) cannot
+/// express that motion: conjugate gradients then need several times the
+/// iterations of a scalar system. With the rotations of every aggregate in
+/// the coarse space (the near null space of smoothed aggregation, Vanek,
+/// Mandel and Brezina, here with unsmoothed prolongation) they do not.
+///
+/// Level 0 aggregates the fine vertices as Aggregation_multigrid does (the
+/// same greedy aggregation on the Frobenius norms of the D x D blocks); a
+/// fine vertex i of aggregate a takes the coarse function
+/// P_i = [I | S(x_i - c_a)], c_a the mean position of a's vertices and
+/// S(d) w the displacement w x d of a rotation w (2D: w (-d_y, d_x)). Level
+/// l + 1 aggregates the unknowns of level l (on the norms of the
+/// translational D x D parts of their blocks) and moves a member a of an
+/// aggregate b by the rigid motion of b: u_a = U_b + S(c_a - c_b) W_b, w_a =
+/// W_b. Every level's matrix is the Galerkin product P^T A P of the level
+/// above, recomputed from the new values and positions at every `load`;
+/// the aggregates are chosen once, at `build`. The coarsest level is solved
+/// by a dense Cholesky factorisation. Serial and in a fixed order: the result
+/// does not depend on the thread count.
+template <int D>
+class Rigid_body_multigrid
+{
+public:
+  /// unknowns per coarse node: D translations, then the rotations
+  static constexpr int R = D * (D + 1) / 2;
+  static constexpr int DD = D * D, RR = R * R;
+  using Row = std::array<double, D>;
+  using Coarse_row = std::array<double, R>;
+
+  /// the same parameters as Aggregation_multigrid's
+  Multigrid_parameters parameters;
+
+  bool built() const { return built_; }
+  std::size_t number_of_levels() const { return levels_.size(); }
+  std::size_t rows(std::size_t level) const { return levels_[level].n; }
+
+  /// Chooses the aggregates of every level from the fine block matrix and
+  /// the positions of its rows.
+  void build(const Csr_view& fine, const Row* points)
+  {
+    SPRING_MOTION_CHECK(fine.block, "rigid-body multigrid: the fine system must have D x D blocks");
+    levels_.clear();
+    built_ = true;
+    std::size_t n = fine.rows;
+    while(n > parameters.coarsest_rows) {
+      Aggregates g;
+      std::vector<double> scale(n), coupling;
+      if(levels_.empty()) {
+        coupling.resize(fine.offsets[n]);
+        for(std::size_t i = 0; i < n; ++i) {
+          scale[i] = block_norm<D>(fine.diag + i * DD);
+          for(Index q = fine.offsets[i]; q < fine.offsets[i + 1]; ++q)
+            coupling[q] = block_norm<D>(fine.values + std::size_t(q) * DD);
+        }
+        if(!aggregate_strong_neighbours(n, fine.offsets, fine.col, scale, coupling, parameters.strength, g))
+          break;
+      } else {
+        const Level& f = levels_.back();
+        coupling.resize(f.col.size());
+        for(std::size_t i = 0; i < n; ++i) {
+          scale[i] = translation_norm(&f.diag[i * RR]);
+          for(Index q = f.offsets[i]; q < f.offsets[i + 1]; ++q)
+            coupling[q] = translation_norm(&f.values[std::size_t(q) * RR]);
+        }
+        if(!aggregate_strong_neighbours(n, f.offsets.data(), f.col.data(), scale, coupling, parameters.strength, g))
+          break;
+      }
+      Level L;
+      L.n = g.count;
+      L.parent_of = std::move(g.parent_of);
+      L.slot_of = std::move(g.slot_of);
+      L.offsets = std::move(g.offsets);
+      L.col = std::move(g.col);
+      L.values.resize(L.col.size() * RR);
+      L.diag.resize(L.n * RR);
+      L.inv_diag.resize(L.n * RR);
+      L.rhs.resize(L.n);
+      L.z.resize(L.n);
+      L.centre.resize(L.n);
+      L.offset.resize(n);
+      levels_.push_back(std::move(L));
+      // this level's values, to aggregate the next one
+      load_level(levels_.size() - 1, fine, points);
+      n = levels_.back().n;
+    }
+  }
+
+  /// Recomputes every level's values from the fine matrix (same pattern as
+  /// in `build`) and the positions of its rows, and factors the coarsest.
+  void load(const Csr_view& fine, const Row* points)
+  {
+    for(std::size_t l = 0; l < levels_.size(); ++l)
+      load_level(l, fine, points);
+    factor_coarsest();
+  }
+
+  /// level 0's right-hand side from the fine residual: P^T r
+  void restrict_from(const std::vector<Row>& fine_residual)
+  {
+    Level& c = levels_.front();
+    std::fill(c.rhs.begin(), c.rhs.end(), Coarse_row{});
+    for(std::size_t i = 0; i < fine_residual.size(); ++i)
+      add_restricted<D>(fine_residual[i].data(), c.offset[i], c.rhs[c.parent_of[i]]);
+  }
+
+  /// Solves approximately on level 0 (a V-cycle over the coarse levels).
+  void cycle() { cycle(0); }
+
+  /// (P z)_i: the displacement of fine row i by level 0's solution z.
+  Row correction(std::size_t i) const
+  {
+    const Level& c = levels_.front();
+    const Coarse_row& z = c.z[c.parent_of[i]];
+    Row u;
+    for(int k = 0; k < D; ++k)
+      u[k] = z[k];
+    add_rotation(z, c.offset[i], u.data());
+    return u;
+  }
+
+  /// The aggregate of level l that unknown i of the level above belongs to.
+  Index parent(std::size_t level, std::size_t i) const { return levels_[level].parent_of[i]; }
+  /// Level l's matrix: R x R blocks, row-major, the translations first.
+  const std::vector<Index>& offsets(std::size_t level) const { return levels_[level].offsets; }
+  const std::vector<Index>& columns(std::size_t level) const { return levels_[level].col; }
+  const std::vector<double>& values(std::size_t level) const { return levels_[level].values; }
+  const std::vector<double>& diagonal(std::size_t level) const { return levels_[level].diag; }
+  /// The centre of unknown a of level l (the mean of its members' positions).
+  const Row& centre(std::size_t level, Index a) const { return levels_[level].centre[a]; }
+
+private:
+  static constexpr Index none = std::numeric_limits<Index>::max();
+
+  struct Level
+  {
+    std::size_t n = 0;                          // unknowns (aggregates) of this level
+    std::vector<Index> parent_of;               // finer unknown -> aggregate
+    std::vector<Index> slot_of;                 // finer off-diagonal entry -> entry here, or none
+    std::vector<Index> offsets, col;            // this level's pattern
+    std::vector<double> values, diag, inv_diag; // R x R per entry / row
+    std::vector<Coarse_row> rhs, z;
+    std::vector<Row> centre;                    // per unknown
+    std::vector<Row> offset;                    // per finer unknown: its position minus its aggregate's centre
+  };
+
+  // Frobenius norm of the translational D x D part of an R x R block
+  static double translation_norm(const double* m)
+  {
+    double s = 0;
+    for(int r = 0; r < D; ++r)
+      for(int c = 0; c < D; ++c)
+        s += m[r * R + c] * m[r * R + c];
+    return std::sqrt(s);
+  }
+
+  // column k of S(d): the displacement at offset d of the unit rotation k
+  static Row rotation_column(int k, const Row& d)
+  {
+    if constexpr(D == 2)
+      return {-d[1], d[0]};
+    else {
+      // e_k x d
+      if(k == 0)
+        return {0.0, -d[2], d[1]};
+      if(k == 1)
+        return {d[2], 0.0, -d[0]};
+      return {-d[1], d[0], 0.0};
+    }
+  }
+
+  // u += S(d) w, w the rotations of z
+  static void add_rotation(const Coarse_row& z, const Row& d, double* u)
+  {
+    for(int k = 0; k < R - D; ++k) {
+      const Row s = rotation_column(k, d);
+      for(int c = 0; c < D; ++c)
+        u[c] += z[D + k] * s[c];
+    }
+  }
+
+  // rc += P^T s for a finer unknown at offset d; s has D (fine) or R values
+  template <int F>
+  static void add_restricted(const double* s, const Row& d, Coarse_row& rc)
+  {
+    for(int c = 0; c < D; ++c)
+      rc[c] += s[c];
+    for(int k = 0; k < R - D; ++k) {
+      const Row col = rotation_column(k, d);
+      double t = 0;
+      for(int c = 0; c < D; ++c)
+        t += col[c] * s[c];
+      rc[D + k] += t + (F == R ? s[D + k] : 0.0);
+    }
+  }
+
+  // the F x R prolongation block of a finer unknown at offset d (F = D: a
+  // fine vertex; F = R: a coarse node, whose rotations carry over)
+  template <int F>
+  static std::array<double, F * R> prolongation(const Row& d)
+  {
+    std::array<double, F * R> p{};
+    for(int c = 0; c < D; ++c)
+      p[c * R + c] = 1;
+    for(int k = 0; k < R - D; ++k) {
+      const Row col = rotation_column(k, d);
+      for(int c = 0; c < D; ++c)
+        p[c * R + D + k] = col[c];
+      if constexpr(F == R)
+        p[(D + k) * R + D + k] = 1;
+    }
+    return p;
+  }
+
+  // C += Pi^T A Pj for an F x F block A
+  template <int F>
+  static void add_galerkin(const double* A, const std::array<double, F * R>& Pi, const std::array<double, F * R>& Pj,
+                           double* C)
+  {
+    double T[F * R];
+    for(int r = 0; r < F; ++r)
+      for(int c = 0; c < R; ++c) {
+        double s = 0;
+        for(int k = 0; k < F; ++k)
+          s += A[r * F + k] * Pj[k * R + c];
+        T[r * R + c] = s;
+      }
+    for(int r = 0; r < R; ++r)
+      for(int c = 0; c < R; ++c) {
+        double s = 0;
+        for(int k = 0; k < F; ++k)
+          s += Pi[k * R + r] * T[k * R + c];
+        C[r * R + c] += s;
+      }
+  }
+
+  // level l's centres, offsets and values from the level above (the fine
+  // matrix for l = 0)
+  void load_level(std::size_t l, const Csr_view& fine, const Row* points)
+  {
+    Level& L = levels_[l];
+    const std::size_t n = L.parent_of.size();
+    const Row* p = l == 0 ? points : levels_[l - 1].centre.data();
+    std::vector<double> count(L.n, 0.0);
+    std::fill(L.centre.begin(), L.centre.end(), Row{});
+    for(std::size_t i = 0; i < n; ++i) {
+      const Index a = L.parent_of[i];
+      count[a] += 1;
+      for(int c = 0; c < D; ++c)
+        L.centre[a][c] += p[i][c];
+    }
+    for(std::size_t a = 0; a < L.n; ++a)
+      for(int c = 0; c < D; ++c)
+        L.centre[a][c] /= count[a];
+    for(std::size_t i = 0; i < n; ++i)
+      for(int c = 0; c < D; ++c)
+        L.offset[i][c] = p[i][c] - L.centre[L.parent_of[i]][c];
+    std::fill(L.values.begin(), L.values.end(), 0.0);
+    std::fill(L.diag.begin(), L.diag.end(), 0.0);
+    if(l == 0)
+      sum_galerkin<D>(L, fine.offsets, fine.col, fine.values, fine.diag);
+    else {
+      const Level& f = levels_[l - 1];
+      sum_galerkin<R>(L, f.offsets.data(), f.col.data(), f.values.data(), f.diag.data());
+    }
+    for(std::size_t a = 0; a < L.n; ++a)
+      invert_diagonal(L, a);
+  }
+
+  // the Galerkin product over the finer level's entries (F x F blocks)
+  template <int F>
+  static void sum_galerkin(Level& L, const Index* offsets, const Index* col, const double* values,
+                           const double* diag)
+  {
+    const std::size_t n = L.parent_of.size();
+    for(std::size_t i = 0; i < n; ++i) {
+      const auto Pi = prolongation<F>(L.offset[i]);
+      double* dA = &L.diag[std::size_t(L.parent_of[i]) * RR];
+      add_galerkin<F>(diag + i * F * F, Pi, Pi, dA);
+      for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
+        const Index s = L.slot_of[q];
+        add_galerkin<F>(values + std::size_t(q) * F * F, Pi, prolongation<F>(L.offset[col[q]]),
+                        s == none ? dA : &L.values[std::size_t(s) * RR]);
+      }
+    }
+  }
+
+  // An aggregate whose vertices lie on one line (a single vertex; two in 3D)
+  // does not feel a rotation about that line: its rotations' diagonal is then
+  // singular, and their coupling to everything else zero. A tiny spring on
+  // them (1e-13 of the largest diagonal entry) makes the block invertible
+  // without changing any other unknown's solution.
+  static void invert_diagonal(Level& L, std::size_t a)
+  {
+    double* m = &L.diag[a * RR];
+    if(invert_spd_block<R>(m, &L.inv_diag[a * RR]))
+      return;
+    double top = 0;
+    for(int k = 0; k < R; ++k)
+      top = std::max(top, std::abs(m[k * R + k]));
+    for(int k = D; k < R; ++k)
+      m[k * R + k] += 1e-13 * top;
+    SPRING_MOTION_CHECK(invert_spd_block<R>(m, &L.inv_diag[a * RR]),
+                        "multigrid: a coarse diagonal block is not positive definite");
+  }
+
+  void factor_coarsest()
+  {
+    if(levels_.empty())
+      return;
+    const Level& L = levels_.back();
+    if(L.n > parameters.max_direct_rows)
+      return;
+    const std::size_t n = L.n * R;
+    chol_.assign(n * n, 0.0);
+    for(std::size_t i = 0; i < L.n; ++i)
+      for(std::size_t r = 0; r < R; ++r) {
+        for(std::size_t c = 0; c < R; ++c)
+          chol_[(i * R + r) * n + i * R + c] = L.diag[i * RR + r * R + c];
+        for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
+          for(std::size_t c = 0; c < R; ++c)
+            chol_[(i * R + r) * n + L.col[q] * R + c] += L.values[std::size_t(q) * RR + r * R + c];
+      }
+    for(std::size_t j = 0; j < n; ++j) {
+      double d = chol_[j * n + j];
+      for(std::size_t k = 0; k < j; ++k)
+        d -= chol_[j * n + k] * chol_[j * n + k];
+      SPRING_MOTION_CHECK(d > 0, "multigrid: the coarsest matrix is not positive definite");
+      const double l = std::sqrt(d);
+      chol_[j * n + j] = l;
+      for(std::size_t i = j + 1; i < n; ++i) {
+        double s = chol_[i * n + j];
+        for(std::size_t k = 0; k < j; ++k)
+          s -= chol_[i * n + k] * chol_[j * n + k];
+        chol_[i * n + j] = s / l;
+      }
+    }
+  }
+
+  void solve_coarsest(Level& L) const
+  {
+    const std::size_t n = L.n * R;
+    double* z = L.z[0].data();
+    const double* b = L.rhs[0].data();
+    for(std::size_t i = 0; i < n; ++i) {
+      double s = b[i];
+      for(std::size_t k = 0; k < i; ++k)
+        s -= chol_[i * n + k] * z[k];
+      z[i] = s / chol_[i * n + i];
+    }
+    for(std::size_t ii = n; ii-- > 0;) {
+      double s = z[ii];
+      for(std::size_t k = ii + 1; k < n; ++k)
+        s -= chol_[k * n + ii] * z[k];
+      z[ii] = s / chol_[ii * n + ii];
+    }
+  }
+
+  // rhs_i - sum_j A_ij z_j over the off-diagonal entries of row i
+  static Coarse_row off_residual(const Level& L, std::size_t i)
+  {
+    Coarse_row s = L.rhs[i];
+    for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
+      subtract_block_product<R>(s, &L.values[std::size_t(q) * RR], L.z[L.col[q]]);
+    return s;
+  }
+
+  static void gauss_seidel(Level& L, bool forward)
+  {
+    for(std::size_t kk = 0; kk < L.n; ++kk) {
+      const std::size_t i = forward ? kk : L.n - 1 - kk;
+      L.z[i] = block_product<R>(&L.inv_diag[i * RR], off_residual(L, i));
+    }
+  }
+
+  // a symmetric V-cycle on level l from z = 0: forward Gauss-Seidel, coarse
+  // correction, backward Gauss-Seidel
+  void cycle(std::size_t l)
+  {
+    Level& L = levels_[l];
+    if(l + 1 == levels_.size()) {
+      if(L.n <= parameters.max_direct_rows)
+        solve_coarsest(L);
+      else { // symmetric, so the cycle stays a symmetric preconditioner
+        std::fill(L.z.begin(), L.z.end(), Coarse_row{});
+        gauss_seidel(L, true);
+        gauss_seidel(L, false);
+      }
+      return;
+    }
+    std::fill(L.z.begin(), L.z.end(), Coarse_row{});
+    gauss_seidel(L, true);
+    Level& C = levels_[l + 1];
+    std::fill(C.rhs.begin(), C.rhs.end(), Coarse_row{});
+    for(std::size_t i = 0; i < L.n; ++i) {
+      Coarse_row s = off_residual(L, i);
+      subtract_block_product<R>(s, &L.diag[i * RR], L.z[i]);
+      add_restricted<R>(s.data(), C.offset[i], C.rhs[C.parent_of[i]]);
+    }
+    cycle(l + 1);
+    const double a = parameters.correction;
+    for(std::size_t i = 0; i < L.n; ++i) {
+      const Coarse_row& Z = C.z[C.parent_of[i]];
+      Row u{};
+      add_rotation(Z, C.offset[i], u.data());
+      for(int c = 0; c < D; ++c)
+        L.z[i][c] += a * (Z[c] + u[c]);
+      for(int k = D; k < R; ++k)
+        L.z[i][k] += a * Z[k];
+    }
+    gauss_seidel(L, false);
+  }
+
+  std::vector<Level> levels_;
+  std::vector<double> chol_;
+  bool built_ = false;
+};
+
+} // namespace internal
+} // namespace spring_motion
+
+#endif

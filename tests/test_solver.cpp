@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -28,15 +29,21 @@ using P2 = std::array<double, 2>;
 
 auto on_hole = [](const P2& p) { return std::max(std::abs(p[0]), std::abs(p[1])) < 1.0; };
 
+// How the edges enter the direct solve below: lineal springs k = 1/l on each
+// component, the 2x2 block k e e^T / |e|^2 of the same spring along its
+// edge, or no edge springs at all.
+enum class Edges { per_component, truss, none };
+using Element_matrix = std::function<void(const std::array<P2, 3>&, double*)>;
+
 // The increment of one step from the initial mesh, solved directly: the
-// global 2n x 2n stiffness is assembled here from lineal springs k = 1/l on
-// each component (`truss`: the 2x2 block k e e^T / |e|^2 along the edge
-// instead) and, when `torsional`, the element matrices R^T C R of
-// Torsional_stiffness (checked against finite differences in
-// test_stiffness.cpp); then K_ff d_f = -K_fc d_c.
+// global 2n x 2n stiffness is assembled here from the edge springs `edges`
+// and, when given, the 6x6 element matrices `element` of every triangle
+// (those of the models are checked against finite differences of their
+// energies in test_stiffness.cpp); then K_ff d_f = -K_fc d_c.
 std::vector<P2> direct_positions(const Spring_network<2>& net, const std::vector<Vertex_role>& roles,
-                                 const std::vector<P2>& target, bool torsional, bool truss = false)
+                                 const std::vector<P2>& target, Edges edges, const Element_matrix& element)
 {
+  const bool truss = edges == Edges::truss;
   const std::size_t n = net.number_of_vertices();
   std::vector<int> unknown(n, -1);
   int nu = 0;
@@ -60,6 +67,8 @@ std::vector<P2> direct_positions(const Spring_network<2>& net, const std::vector
       rhs(r) -= v * prescribed[2 * j + b];
   };
   for(const auto& e : net.edges) {
+    if(edges == Edges::none)
+      break;
     const double ex = net.points[e[1]][0] - net.points[e[0]][0], ey = net.points[e[1]][1] - net.points[e[0]][1];
     const double k = 1.0 / std::hypot(ex, ey), l2 = ex * ex + ey * ey;
     const double B[2][2] = {{truss ? k * ex * ex / l2 : k, truss ? k * ex * ey / l2 : 0},
@@ -71,11 +80,11 @@ std::vector<P2> direct_positions(const Spring_network<2>& net, const std::vector
           add(e[s], r, e[1 - s], c, -B[r][c]);
         }
   }
-  if(torsional)
+  if(element)
     for(const auto& el : net.elements) {
       const std::array<P2, 3> p{net.points[el[0]], net.points[el[1]], net.points[el[2]]};
       std::array<double, 36> K{};
-      Torsional_stiffness{}.add_element_matrix(p, K.data());
+      element(p, K.data());
       for(int a = 0; a < 3; ++a)
         for(int b = 0; b < 3; ++b)
           for(int r = 0; r < 2; ++r)
@@ -115,8 +124,9 @@ struct Comparison
   Deform_report report;
 };
 
-// One step of `model` (Lineal_stiffness{1} or Torsional_stiffness{}) turning
-// the hole, compared with the direct solve.
+// One step of `model` (Lineal_stiffness{1}, Torsional_stiffness{},
+// Truss_model or Ball_vertex_stiffness) turning the hole, compared with the
+// direct solve.
 template <class Model>
 Comparison compare_with_direct(const Spring_network<2>& net, const Model& model, const Pitch_motion<2>& motion,
                                const Solver_options& solver)
@@ -126,8 +136,15 @@ Comparison compare_with_direct(const Spring_network<2>& net, const Model& model,
   for(std::size_t i = 0; i < net.number_of_vertices(); ++i)
     if(roles[i] == Vertex_role::moving)
       target[i] = motion(net.points[i], 1.0);
-  const auto direct = direct_positions(net, roles, target, std::is_same<Model, Torsional_stiffness>::value,
-                                       std::is_same<Model, Truss_model>::value);
+  Edges edges = Edges::per_component;
+  if(std::is_same<Model, Truss_model>::value)
+    edges = Edges::truss;
+  else if(std::is_same<Model, Ball_vertex_stiffness>::value)
+    edges = Edges::none; // a pure element model
+  Element_matrix element;
+  if constexpr(!std::is_same<Model, Lineal_stiffness>::value)
+    element = [&model](const std::array<P2, 3>& p, double* K) { model.add_element_matrix(p, K); };
+  const auto direct = direct_positions(net, roles, target, edges, element);
   Network_deformer<2> deformer(net, roles);
   Deform_options options;
   options.number_of_steps = 1; // one solve, with the stiffness of the initial mesh
@@ -203,6 +220,14 @@ TEST_CASE("solvers: SOR and conjugate gradients match a direct sparse solve", "[
       CHECK(r.largest > 1e-2);
       CHECK(r.error <= bound);
     }
+    SECTION(std::string("2x2-block system (ball-vertex springs, k = 1/h^2), ") + c.name)
+    {
+      const auto r = compare_with_direct(net, Ball_vertex_stiffness{2.0}, motion, o);
+      INFO("error " << r.error << ", motion " << r.largest << ", iterations " << r.report.steps[0].iterations);
+      CHECK(r.report.converged);
+      CHECK(r.largest > 1e-2);
+      CHECK(r.error <= bound);
+    }
     SECTION(std::string("2x2-block system (springs along their edges), ") + c.name)
     {
       const auto r = compare_with_direct(net, Truss_model{}, motion, o);
@@ -223,13 +248,19 @@ TEST_CASE("solvers: block and scalar systems take iterations of the same order",
   Solver_options o;
   o.tolerance = 1e-9;
   const auto scalar = compare_with_direct(net, Lineal_stiffness{1.0}, motion, o);
-  const auto block = compare_with_direct(net, Torsional_stiffness{}, motion, o);
-  INFO("iterations: scalar " << scalar.report.steps[0].iterations << ", block " << block.report.steps[0].iterations);
-  CHECK(block.error <= 10 * o.tolerance);
-  // the multigrid V-cycle on 2x2 blocks (aggregates by block norm, Galerkin
-  // sums of blocks) keeps the block system's iterations of the order of the
+  const auto torsional = compare_with_direct(net, Torsional_stiffness{}, motion, o);
+  const auto ball_vertex = compare_with_direct(net, Ball_vertex_stiffness{2.0}, motion, o);
+  const std::size_t n_scalar = scalar.report.steps[0].iterations;
+  INFO("iterations: scalar " << n_scalar << ", torsional " << torsional.report.steps[0].iterations
+                             << ", ball-vertex " << ball_vertex.report.steps[0].iterations);
+  CHECK(torsional.error <= 10 * o.tolerance);
+  CHECK(ball_vertex.error <= 10 * o.tolerance);
+  // the multigrid V-cycle on 2x2 blocks (aggregates by block norm, a coarse
+  // space that translates and rotates each aggregate, Galerkin coarse
+  // operators) keeps the block systems' iterations of the order of the
   // scalar system's
-  CHECK(block.report.steps[0].iterations <= 2 * scalar.report.steps[0].iterations);
+  CHECK(torsional.report.steps[0].iterations <= 2 * n_scalar);
+  CHECK(ball_vertex.report.steps[0].iterations <= 2 * n_scalar);
 }
 
 namespace {

@@ -125,6 +125,27 @@ Vec coarse_correction(Aggregation_multigrid<2>& mg, const Vec& u)
   return z;
 }
 
+// T symmetric (<Tu, v> = <u, Tv>) and positive (<Tu, u> > 0) on random
+// vectors of `rows` rows: T a coarse correction u -> P M_c^{-1} P^T u
+template <class Correction>
+void check_symmetric_positive(const Correction& T, std::size_t rows, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(-1, 1);
+  for(int trial = 0; trial < 5; ++trial) {
+    Vec u(rows), v(rows);
+    for(std::size_t i = 0; i < rows; ++i) {
+      u[i] = {d(rng), d(rng)};
+      v[i] = {d(rng), d(rng)};
+    }
+    const Vec Tu = T(u), Tv = T(v);
+    const double a = dot(Tu, v), b = dot(u, Tv);
+    INFO("<Tu, v> = " << a << ", <u, Tv> = " << b);
+    CHECK(std::abs(a - b) <= 1e-10 * std::sqrt(dot(Tu, Tu) * dot(v, v)));
+    CHECK(dot(Tu, u) > 0);
+  }
+}
+
 struct Setup
 {
   Spring_network<2> net;
@@ -237,20 +258,7 @@ TEST_CASE("multigrid: the coarse correction is symmetric and positive semi-defin
   mg.build(s.A.view());
   mg.load(s.A.view());
   REQUIRE(mg.number_of_levels() >= 2);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> d(-1, 1);
-  for(int trial = 0; trial < 5; ++trial) {
-    Vec u(s.A.rows()), v(s.A.rows());
-    for(std::size_t i = 0; i < u.size(); ++i) {
-      u[i] = {d(rng), d(rng)};
-      v[i] = {d(rng), d(rng)};
-    }
-    const Vec Tu = coarse_correction(mg, u), Tv = coarse_correction(mg, v);
-    const double a = dot(Tu, v), b = dot(u, Tv);
-    INFO("<Tu, v> = " << a << ", <u, Tv> = " << b);
-    CHECK(std::abs(a - b) <= 1e-10 * std::sqrt(dot(Tu, Tu) * dot(v, v)));
-    CHECK(dot(Tu, u) > 0);
-  }
+  check_symmetric_positive([&](const Vec& u) { return coarse_correction(mg, u); }, s.A.rows(), 7);
 }
 
 // ---- block systems: coarse functions that move each aggregate rigidly ----
@@ -275,6 +283,17 @@ std::vector<std::array<double, 2>> free_points(const Spring_network<2>& net)
 std::array<double, 2 * R> rigid_block(const std::array<double, 2>& d)
 {
   return {1, 0, -d[1], 0, 1, d[0]};
+}
+
+// u -> P M_c^{-1} P^T u on the fine level, P the rigid motions of the aggregates
+Vec rigid_correction(Rigid& mg, const Vec& u)
+{
+  mg.restrict_from(u);
+  mg.cycle();
+  Vec z(u.size());
+  for(std::size_t i = 0; i < u.size(); ++i)
+    z[i] = mg.correction(i);
+  return z;
 }
 
 } // namespace
@@ -376,13 +395,7 @@ TEST_CASE("rigid-body multigrid: with the coarsest level solved exactly, the coa
   mg.build(A, points.data());
   mg.load(A, points.data());
   REQUIRE(mg.number_of_levels() == 1);
-  mg.restrict_from(Au);
-  mg.cycle();
-  Vec Tu(u.size());
-  for(std::size_t i = 0; i < u.size(); ++i)
-    Tu[i] = mg.correction(i);
-  CHECK(error(Tu) <= 1e-8);
-
+  CHECK(error(rigid_correction(mg, Au)) <= 1e-8);
 }
 
 TEST_CASE("rigid-body multigrid: the coarse correction is symmetric and positive semi-definite", "[solver][multigrid]")
@@ -393,26 +406,5 @@ TEST_CASE("rigid-body multigrid: the coarse correction is symmetric and positive
   mg.build(s.A.view(), points.data());
   mg.load(s.A.view(), points.data());
   REQUIRE(mg.number_of_levels() >= 2);
-  auto T = [&](const Vec& u) {
-    mg.restrict_from(u);
-    mg.cycle();
-    Vec z(u.size());
-    for(std::size_t i = 0; i < u.size(); ++i)
-      z[i] = mg.correction(i);
-    return z;
-  };
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> d(-1, 1);
-  for(int trial = 0; trial < 5; ++trial) {
-    Vec u(s.A.rows()), v(s.A.rows());
-    for(std::size_t i = 0; i < u.size(); ++i) {
-      u[i] = {d(rng), d(rng)};
-      v[i] = {d(rng), d(rng)};
-    }
-    const Vec Tu = T(u), Tv = T(v);
-    const double a = dot(Tu, v), b = dot(u, Tv);
-    INFO("<Tu, v> = " << a << ", <u, Tv> = " << b);
-    CHECK(std::abs(a - b) <= 1e-10 * std::sqrt(dot(Tu, Tu) * dot(v, v)));
-    CHECK(dot(Tu, u) > 0);
-  }
+  check_symmetric_positive([&](const Vec& u) { return rigid_correction(mg, u); }, s.A.rows(), 11);
 }

@@ -136,6 +136,54 @@ inline bool aggregate_strong_neighbours(std::size_t n, const Index* offsets, con
   return true;
 }
 
+/// Replaces the symmetric n x n row-major matrix a by its Cholesky factor L
+/// (lower triangle; the upper one is left as it was). The multigrids'
+/// coarsest levels are small enough for a dense factorisation.
+inline void dense_cholesky(std::vector<double>& a, std::size_t n)
+{
+  for(std::size_t j = 0; j < n; ++j) {
+    double d = a[j * n + j];
+    for(std::size_t k = 0; k < j; ++k)
+      d -= a[j * n + k] * a[j * n + k];
+    SPRING_MOTION_CHECK(d > 0, "multigrid: the coarsest matrix is not positive definite");
+    const double l = std::sqrt(d);
+    a[j * n + j] = l;
+    for(std::size_t i = j + 1; i < n; ++i) {
+      double s = a[i * n + j];
+      for(std::size_t k = 0; k < j; ++k)
+        s -= a[i * n + k] * a[j * n + k];
+      a[i * n + j] = s / l;
+    }
+  }
+}
+
+/// Solves L L^T z = b for M right-hand sides stored interleaved (b[i * M + c]
+/// is row i of right-hand side c), L from dense_cholesky.
+template <int M>
+void dense_cholesky_solve(const std::vector<double>& l, std::size_t n, const double* b, double* z)
+{
+  for(std::size_t i = 0; i < n; ++i) {
+    std::array<double, M> s{};
+    for(int c = 0; c < M; ++c)
+      s[c] = b[i * M + c];
+    for(std::size_t k = 0; k < i; ++k)
+      for(int c = 0; c < M; ++c)
+        s[c] -= l[i * n + k] * z[k * M + c];
+    for(int c = 0; c < M; ++c)
+      z[i * M + c] = s[c] / l[i * n + i];
+  }
+  for(std::size_t ii = n; ii-- > 0;) {
+    std::array<double, M> s{};
+    for(int c = 0; c < M; ++c)
+      s[c] = z[ii * M + c];
+    for(std::size_t k = ii + 1; k < n; ++k)
+      for(int c = 0; c < M; ++c)
+        s[c] -= l[k * n + ii] * z[k * M + c];
+    for(int c = 0; c < M; ++c)
+      z[ii * M + c] = s[c] / l[ii * n + ii];
+  }
+}
+
 /// The coarse levels of a multigrid cycle for a scalar spring system (edge
 /// models: one value per entry, the same for the D components), built by
 /// plain (unsmoothed) aggregation: the unknowns (vertices) of a level are
@@ -302,42 +350,10 @@ private:
       for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
         chol_[i * n + a.col[q]] += a.values[q];
     }
-    for(std::size_t j = 0; j < n; ++j) {
-      double d = chol_[j * n + j];
-      for(std::size_t k = 0; k < j; ++k)
-        d -= chol_[j * n + k] * chol_[j * n + k];
-      SPRING_MOTION_CHECK(d > 0, "multigrid: the coarsest matrix is not positive definite");
-      const double l = std::sqrt(d);
-      chol_[j * n + j] = l;
-      for(std::size_t i = j + 1; i < n; ++i) {
-        double s = chol_[i * n + j];
-        for(std::size_t k = 0; k < j; ++k)
-          s -= chol_[i * n + k] * chol_[j * n + k];
-        chol_[i * n + j] = s / l;
-      }
-    }
+    dense_cholesky(chol_, n);
   }
 
-  void solve_coarsest(Level& L) const
-  {
-    const std::size_t n = L.n;
-    for(std::size_t i = 0; i < n; ++i) {
-      Row s = L.rhs[i];
-      for(std::size_t k = 0; k < i; ++k)
-        for(int c = 0; c < D; ++c)
-          s[c] -= chol_[i * n + k] * L.z[k][c];
-      for(int c = 0; c < D; ++c)
-        L.z[i][c] = s[c] / chol_[i * n + i];
-    }
-    for(std::size_t ii = n; ii-- > 0;) {
-      Row s = L.z[ii];
-      for(std::size_t k = ii + 1; k < n; ++k)
-        for(int c = 0; c < D; ++c)
-          s[c] -= chol_[k * n + ii] * L.z[k][c];
-      for(int c = 0; c < D; ++c)
-        L.z[ii][c] = s[c] / chol_[ii * n + ii];
-    }
-  }
+  void solve_coarsest(Level& L) const { dense_cholesky_solve<D>(chol_, L.n, L.rhs[0].data(), L.z[0].data()); }
 
   // rhs_i - sum_j A_ij z_j over the off-diagonal entries of row i
   static Row off_residual(const Level& L, std::size_t i)

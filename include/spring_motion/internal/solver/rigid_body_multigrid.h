@@ -346,39 +346,12 @@ private:
           for(std::size_t c = 0; c < R; ++c)
             chol_[(i * R + r) * n + L.col[q] * R + c] += L.values[std::size_t(q) * RR + r * R + c];
       }
-    for(std::size_t j = 0; j < n; ++j) {
-      double d = chol_[j * n + j];
-      for(std::size_t k = 0; k < j; ++k)
-        d -= chol_[j * n + k] * chol_[j * n + k];
-      SPRING_MOTION_CHECK(d > 0, "multigrid: the coarsest matrix is not positive definite");
-      const double l = std::sqrt(d);
-      chol_[j * n + j] = l;
-      for(std::size_t i = j + 1; i < n; ++i) {
-        double s = chol_[i * n + j];
-        for(std::size_t k = 0; k < j; ++k)
-          s -= chol_[i * n + k] * chol_[j * n + k];
-        chol_[i * n + j] = s / l;
-      }
-    }
+    dense_cholesky(chol_, n);
   }
 
   void solve_coarsest(Level& L) const
   {
-    const std::size_t n = L.n * R;
-    double* z = L.z[0].data();
-    const double* b = L.rhs[0].data();
-    for(std::size_t i = 0; i < n; ++i) {
-      double s = b[i];
-      for(std::size_t k = 0; k < i; ++k)
-        s -= chol_[i * n + k] * z[k];
-      z[i] = s / chol_[i * n + i];
-    }
-    for(std::size_t ii = n; ii-- > 0;) {
-      double s = z[ii];
-      for(std::size_t k = ii + 1; k < n; ++k)
-        s -= chol_[k * n + ii] * z[k];
-      z[ii] = s / chol_[ii * n + ii];
-    }
+    dense_cholesky_solve<1>(chol_, L.n * R, L.rhs[0].data(), L.z[0].data());
   }
 
   // rhs_i - sum_j A_ij z_j over the off-diagonal entries of row i

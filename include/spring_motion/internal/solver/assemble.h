@@ -15,7 +15,6 @@
 #include <cmath>
 #include <exception>
 #include <limits>
-#include <string>
 #include <vector>
 
 namespace spring_motion {
@@ -171,10 +170,7 @@ void add_element_matrices(const Spring_network<D>& net, const std::vector<typena
         // there breaks elsewhere on another step
         for(double v : Ke)
           finite = finite && std::isfinite(v);
-        if(!finite)
-          throw_indexed_error<Element_error>(__FILE__, __LINE__,
-                                             "element stiffness of element " + std::to_string(t) + " is not finite",
-                                             t);
+        SPRING_MOTION_ELEMENT_CHECK(finite, t, "element stiffness of element " << t << " is not finite");
       } catch(...) {
 #pragma omp critical(spring_motion_element_matrix_error)
         if(long(t) < first_bad) {

@@ -486,9 +486,6 @@ private:
       colour_offsets_[c + 1] += colour_offsets_[c];
   }
 
-  // For every element, where each of its (D+1)^2 blocks
-  // goes: a diagonal block, an off-diagonal one, a coupling to a constrained
-  // vertex, or nowhere (a constrained vertex's row).
   // Greedy colouring of the elements in their order: each takes the first
   // colour none of the elements at its free vertices has taken.
   std::vector<Index> element_colouring(const Spring_network<D>& net, const std::vector<Index>& row_of)
@@ -515,6 +512,9 @@ private:
     return colour;
   }
 
+  // For every element, where each of its (D+1)^2 blocks
+  // goes: a diagonal block, an off-diagonal one, a coupling to a constrained
+  // vertex, or nowhere (a constrained vertex's row).
   void element_destinations(const Spring_network<D>& net, const std::vector<Index>& row_of)
   {
     const std::vector<Index> colour = element_colouring(net, row_of);

@@ -37,13 +37,43 @@ namespace spring_motion {
 /// by step. Construction checks the roles: at least one moving vertex, and
 /// every free vertex connected through free vertices to a constrained one
 /// (otherwise the system is singular).
+/// Where the checks of the vertex roles are made: on the network given
+/// (`here`), or by the caller on the whole mesh, of which the network is one
+/// part (`by_caller`): a part of a partitioned mesh may have no moving vertex,
+/// and its free vertices may reach a constrained one only through other parts.
+enum class Role_checks { here, by_caller };
+
+/// Checks the roles of a whole mesh as `Network_deformer` does: at least one
+/// moving vertex, and every free vertex connected through free vertices to a
+/// constrained one (otherwise the system is singular). Throws `Error`.
+template <int D>
+void check_vertex_roles(const Spring_network<D>& net, const std::vector<Vertex_role>& roles)
+{
+  const std::size_t n = net.number_of_vertices();
+  SPRING_MOTION_CHECK(roles.size() == n, "got " << roles.size() << " vertex roles for " << n << " vertices");
+  std::vector<char> used(n, 0);
+  for(const auto& e : net.elements)
+    for(Index v : e)
+      used[v] = 1;
+  bool moving = false;
+  for(Index i = 0; i < n && !moving; ++i)
+    moving = used[i] && roles[i] == Vertex_role::moving;
+  SPRING_MOTION_CHECK(moving, "no vertex is moving: the set of moving vertices is empty");
+  const std::vector<Index> unreached = undetermined_vertices(net, roles);
+  SPRING_MOTION_VERTEX_CHECK(unreached.empty(), unreached.empty() ? 0 : unreached.front(),
+                             unreached.size() << " free vertices (for instance vertex "
+                                              << (unreached.empty() ? 0 : unreached.front())
+                                              << ") are connected to no constrained vertex: "
+                                                 "their displacement is undetermined (singular system)");
+}
+
 template <int D>
 class Network_deformer
 {
 public:
   using Point = std::array<double, D>;
 
-  Network_deformer(Spring_network<D> network, std::vector<Vertex_role> roles)
+  Network_deformer(Spring_network<D> network, std::vector<Vertex_role> roles, Role_checks checks = Role_checks::here)
       : net_(std::move(network)), roles_(std::move(roles))
   {
     const std::size_t n = net_.number_of_vertices();
@@ -71,13 +101,8 @@ public:
         sliding_vertices_.push_back(sv.vertex);
         sliding_projectors_.push_back(sv.projector);
       }
-    SPRING_MOTION_CHECK(!moving_.empty(), "no vertex is moving: the set of moving vertices is empty");
-    const std::vector<Index> unreached = undetermined_vertices(net_, roles_);
-    SPRING_MOTION_VERTEX_CHECK(unreached.empty(), unreached.empty() ? 0 : unreached.front(),
-                               unreached.size() << " free vertices (for instance vertex "
-                                                << (unreached.empty() ? 0 : unreached.front())
-                                                << ") are connected to no constrained vertex: "
-                                                   "their displacement is undetermined (singular system)");
+    if(checks == Role_checks::here)
+      check_vertex_roles(net_, roles_);
     // a product with a normal power of two rounds as ldexp does, at a
     // fraction of its cost; exponents whose power is not normal keep ldexp
     const double longest = net_.longest_initial_edge;
@@ -122,6 +147,12 @@ public:
   /// goes on as with the built-in solve (exact check, rollback, substeps).
   /// The PETSc backend of the command line is such a solve (docs/scaling.md).
   std::function<Solve_report(const Step_system_view<D>&, std::vector<Point>& solution)> solve_override;
+
+  /// When set, a step is accepted only if this returns true, given whether
+  /// the step inverted none of this network's elements. For a network that is
+  /// one part of a partitioned mesh: the parts agree (an MPI all-reduce), so
+  /// that all reject, roll back and substep together.
+  std::function<bool(bool)> agree_on_validity;
 
   /// The moving vertices, in the order `move()` takes their displacements.
   const std::vector<Index>& moving_vertices() const { return moving_; }
@@ -499,7 +530,8 @@ private:
     find_inverted_elements(net_, candidate_, record_, std::back_inserter(failed.inverted), threads);
     s.seconds_check += seconds_since(t0);
     threads_.record(seconds_since(attempt_start), sr.iterations);
-    if(!failed.inverted.empty())
+    const bool valid = failed.inverted.empty();
+    if(!(agree_on_validity ? agree_on_validity(valid) : valid))
       return false;
     // copied, not swapped: positions() keeps its storage for the deformer's
     // lifetime, so a view of it (the Python module's) stays valid

@@ -16,7 +16,7 @@
 #include <spring_motion/motion/Pitch_motion.h>
 #include <spring_motion/stiffness/model_by_name.h>
 #ifdef SPRING_MOTION_WITH_PETSC
-#include <spring_motion/internal/solver/petsc_solve.h>
+#include "Partitioned_run.h"
 #endif
 
 #include <algorithm>
@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <iomanip>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <sstream>
@@ -61,6 +62,7 @@ struct Deform_settings
   std::string model = "grid_scaled";
   Deform_options options;
   std::vector<Output_file> outputs;
+  bool series = false; // a .pvd output (known on every rank, which all take part in gathering a frame)
   std::size_t every = 1;
   std::string report_path;
   bool quiet = false, force_progress = false;
@@ -161,12 +163,16 @@ Deform_settings parse_deform(const Arguments& a)
       throw Usage_error("--backend: expected shared or petsc, found '" + *backend + "'");
   }
 
+  if(s.petsc && s.sliding)
+    throw Usage_error("--sliding is not supported with --backend petsc: the planes are fitted on the whole mesh, "
+                      "which a rank's part does not hold");
   for(const std::string& path : a.values("output"))
     s.outputs.push_back(classify_output(path));
   const bool has_pvd = std::any_of(s.outputs.begin(), s.outputs.end(),
                                    [](const Output_file& o) { return o.kind == Output_file::Kind::pvd; });
   if(a.has("every") && !has_pvd)
     throw Usage_error("--every K sets the steps of a .pvd time series: expected an --output ending in .pvd");
+  s.series = has_pvd;
   s.every = std::size_t(a.integer("every", 1, 1, 100000000));
   s.report_path = a.value("report").value_or("");
   s.quiet = a.has("quiet");
@@ -190,34 +196,33 @@ std::array<double, D> to_point(const std::vector<double>& v, const char* option)
 }
 
 // The frames of a .pvd series and the state the visitor shares with the run.
-template <int D>
 struct Run_context
 {
   const Deform_settings* settings = nullptr;
-  const Mesh_setup<D>* setup = nullptr;
-  const Network_deformer<D>* deformer = nullptr;
   Progress_bar* bar = nullptr;
   Clock::time_point start;
   std::vector<Pvd_series> series;
+  // adds the current state to every series; called on every rank (a
+  // partitioned run gathers the positions first)
+  std::function<void(std::size_t step)> add_frame;
+  std::size_t last_frame = std::size_t(-1);
 };
 
-template <int D>
 struct Command_visitor
 {
-  Run_context<D>* context;
+  Run_context* context;
   void on_start(const Deform_report&) {}
   void on_step(const Step_report& step)
   {
-    Run_context<D>& c = *context;
+    Run_context& c = *context;
     if(c.bar)
       c.bar->update(step, std::chrono::duration<double>(Clock::now() - c.start).count());
     if(interrupted())
       throw Interrupted();
     const bool accepted = step.inverted == 0;
     const bool last = step.step == c.settings->options.number_of_steps;
-    if(accepted && (step.step % c.settings->every == 0 || last))
-      for(auto& s : c.series)
-        s.add_frame(step.step, *c.setup, *c.deformer);
+    if(c.settings->series && accepted && (step.step % c.settings->every == 0 || last))
+      c.add_frame(step.step);
   }
 };
 
@@ -262,25 +267,10 @@ std::string summary_line(const Deform_report& r, const std::vector<Output_file>&
 // below --tolerance (the meshes' lengths are of order 1).
 double petsc_rtol(const Deform_settings& s) { return 1e-3 * s.options.solver.tolerance; }
 
-// Each step's system solved by PETSc (KSP CG + GAMG) on every rank of
-// PETSC_COMM_WORLD; every rank holds the whole mesh and runs the same step,
-// so the exact check and a rollback agree on all ranks (docs/scaling.md).
-template <int D>
-Solve_report petsc_solve(const Deform_settings& s, const Step_system_view<D>& view,
-                         std::vector<std::array<double, D>>& x)
-{
-  internal::Petsc_solve_report pr;
-  if(internal::petsc_solve_step_system<D>(PETSC_COMM_WORLD, view, petsc_rtol(s), x, pr) != 0)
-    throw Error("PETSc's solve of a step failed");
-  Solve_report r;
-  r.iterations = std::size_t(pr.iterations);
-  r.converged = pr.converged;
-  return r;
-}
-
 /// MPI and PETSc for the run (--backend petsc), finalized on the way out,
 /// also by an exception: every rank meets the same one, since every rank
-/// reads the same files and runs the same steps.
+/// reads the same files and checks the same roles (an error of one rank
+/// during the steps ends the run with MPI_Abort, see run_motion).
 struct Petsc_session
 {
   explicit Petsc_session(bool on) : on_(on)
@@ -315,38 +305,98 @@ private:
 };
 #endif
 
+#ifdef SPRING_MOTION_WITH_PETSC
+// Within a catch block: prints the exception in flight as main() would,
+// then aborts every rank with main()'s exit status for it.
+template <int D>
+[[noreturn]] void abort_partitioned_run(const Mesh_setup<D>& setup, const Partitioned_run<D>& run, std::ostream& err)
+{
+  int status = exit_internal_error;
+  try {
+    throw;
+  } catch(const Interrupted& e) {
+    err << "spring-motion: " << e.what() << "\n";
+    status = exit_interrupted;
+  } catch(const Input_error& e) {
+    err << "spring-motion: " << e.what() << "\n";
+    status = exit_input_error;
+  } catch(const Error& e) {
+    err << "spring-motion: " << file_error(setup, run.whole_mesh_error(e)).what() << "\n";
+    status = exit_input_error;
+  } catch(const std::exception& e) {
+    err << "spring-motion: internal error: " << e.what() << "\n";
+  }
+  err.flush();
+  MPI_Abort(PETSC_COMM_WORLD, status);
+  std::abort();
+}
+#endif
+
 template <int D, class Motion>
 int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Vertex_role> roles, const Motion& motion,
                std::ostream& out, std::ostream& err, bool err_is_terminal)
 {
-  Network_deformer<D> deformer(std::move(setup.network), std::move(roles));
+  using Point = std::array<double, D>;
 #ifdef SPRING_MOTION_WITH_PETSC
+  // the mesh partitioned over the ranks: each runs a deformer on its part
+  std::optional<Partitioned_run<D>> partitioned;
   if(s.petsc)
-    deformer.solve_override = [&s](const Step_system_view<D>& view, std::vector<std::array<double, D>>& x) {
-      return petsc_solve<D>(s, view, x);
+    partitioned.emplace(PETSC_COMM_WORLD, setup.network, roles);
+  Network_deformer<D> deformer =
+      partitioned ? Network_deformer<D>(partitioned->take_network(), partitioned->take_roles(), Role_checks::by_caller)
+                  : Network_deformer<D>(std::move(setup.network), std::move(roles));
+  // rank 0 keeps the whole network to write it; the others free it
+  std::vector<Point> whole_positions;
+  Orientation_record whole_record;
+  if(partitioned) {
+    if(partitioned->rank() == 0)
+      whole_record = record_orientations(setup.network, setup.network.points);
+    else
+      setup.network = Spring_network<D>();
+    deformer.solve_override = [&](const Step_system_view<D>& view, std::vector<Point>& x) {
+      return partitioned->solve(view, x, petsc_rtol(s));
     };
+    deformer.agree_on_validity = [&](bool valid) { return partitioned->agree(valid); };
+  }
+#else
+  Network_deformer<D> deformer(std::move(setup.network), std::move(roles));
 #endif
+  // the state to write: the deformer's, or the parts' gathered on rank 0 (collective)
+  const auto state_now = [&]() -> Mesh_state<D> {
+#ifdef SPRING_MOTION_WITH_PETSC
+    if(partitioned) {
+      partitioned->gather(deformer, setup.network, whole_positions);
+      return {setup.network, whole_positions, whole_record};
+    }
+#endif
+    return state_of(deformer);
+  };
   Progress_bar bar(err, !s.quiet && (err_is_terminal || s.force_progress), s.options.number_of_steps);
-  Run_context<D> context;
+  Run_context context;
   context.settings = &s;
-  context.setup = &setup;
-  context.deformer = &deformer;
   context.bar = &bar;
   context.start = Clock::now();
   for(const auto& o : s.outputs)
     if(o.kind == Output_file::Kind::pvd)
       context.series.emplace_back(o.path, s.options.number_of_steps);
+  context.add_frame = [&](std::size_t step) {
+    const Mesh_state<D> state = state_now();
+    for(auto& series : context.series)
+      series.add_frame(step, setup, state);
+    context.last_frame = step;
+  };
   Deform_report report;
   std::vector<std::string> written; // finished outputs, removed if a later one fails
   try {
-    for(auto& series : context.series)
-      series.add_frame(0, setup, deformer);
+    if(s.series)
+      context.add_frame(0);
     report = with_model(s.model, [&](const auto& model) {
-      return deformer.run(motion, model, s.options, Command_visitor<D>{&context});
+      return deformer.run(motion, model, s.options, Command_visitor{&context});
     });
     report.backend = s.petsc ? "petsc" : "shared";
 #ifdef SPRING_MOTION_WITH_PETSC
-    if(s.petsc) {
+    if(partitioned) {
+      partitioned->reduce(report, deformer, s.options.solver.threads);
       MPI_Comm_size(PETSC_COMM_WORLD, &report.ranks);
       double mine[2] = {0, report.seconds_total};
       for(const auto& step : report.steps)
@@ -360,10 +410,10 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
     }
 #endif
     bar.clear();
-    if(!report.completed) // the last valid state closes the series, whatever --every says
-      for(auto& series : context.series)
-        if(series.last_step() != report.first_invalid->step - 1)
-          series.add_frame(report.first_invalid->step - 1, setup, deformer);
+    // the last valid state closes the series, whatever --every says
+    if(s.series && !report.completed && context.last_frame != report.first_invalid->step - 1)
+      context.add_frame(report.first_invalid->step - 1);
+    const Mesh_state<D> final_state = state_now();
     std::vector<std::size_t> frames;
     for(const auto& o : s.outputs) {
       written.push_back(o.path);
@@ -373,7 +423,7 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
         it->finish();
         frames.push_back(it->frames());
       } else {
-        write_final_mesh(o, setup, deformer);
+        write_final_mesh(o, setup, final_state);
         frames.push_back(0);
       }
     }
@@ -389,6 +439,14 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
     std::error_code ignored;
     for(const auto& path : written)
       fs::remove(path, ignored);
+#ifdef SPRING_MOTION_WITH_PETSC
+    // An error of one rank's part during the steps (a non-finite position,
+    // a degenerate element's stiffness) is not seen by the other ranks,
+    // which wait in the next collective call: this rank reports it as the
+    // whole mesh numbers it, and ends every rank.
+    if(partitioned)
+      abort_partitioned_run(setup, *partitioned, err);
+#endif
     throw;
   }
   return report.completed ? exit_success : exit_invalid;

@@ -132,10 +132,11 @@ options:
   --threads T          OpenMP threads (default: OpenMP's team or one thread,
                        chosen step by step by measuring both; one thread wins
                        when other processes keep the cores busy)
-  --backend NAME       shared (default): this library's solver; petsc: each
-                       step's system solved by PETSc (CG + GAMG) on the MPI
-                       ranks of mpiexec -n N (a build with
-                       SPRING_MOTION_WITH_PETSC=ON; docs/scaling.md)
+  --backend NAME       shared (default): this library's solver; petsc: the
+                       mesh partitioned over the MPI ranks of mpiexec -n N,
+                       each step's system solved by PETSc (CG + GAMG); not
+                       with --sliding (a build with SPRING_MOTION_WITH_PETSC=ON;
+                       docs/scaling.md)
   --output OUT         by extension, may be repeated:
                        .vtu   the final mesh, with point 'displacement' and cell
                               'skewness' (R), 'valid' (1/0) and 'label'

@@ -77,12 +77,12 @@ void check_outputs(const std::vector<std::string>& inputs, const std::vector<Out
 }
 
 namespace {
-// The file's mesh at the deformer's positions: a vertex no element uses stays where it is.
+// The file's mesh at the state's positions: a vertex no element uses stays where it is.
 template <int D>
-Indexed_mesh<D> moved_mesh(const Mesh_setup<D>& setup, const Network_deformer<D>& deformer)
+Indexed_mesh<D> moved_mesh(const Mesh_setup<D>& setup, const Mesh_state<D>& state)
 {
   Indexed_mesh<D> mesh = *setup.mesh;
-  const auto& x = deformer.positions();
+  const auto& x = state.positions;
   for(Index i = 0; i < x.size(); ++i)
     mesh.points[setup.file_vertex[i]] = x[i];
   return mesh;
@@ -90,10 +90,10 @@ Indexed_mesh<D> moved_mesh(const Mesh_setup<D>& setup, const Network_deformer<D>
 } // namespace
 
 template <int D>
-void state_arrays(const Mesh_setup<D>& setup, const Network_deformer<D>& deformer, std::vector<Data_array>& point_data,
+void state_arrays(const Mesh_setup<D>& setup, const Mesh_state<D>& state, std::vector<Data_array>& point_data,
                   std::vector<Data_array>& cell_data)
 {
-  motion_data_arrays(deformer.network(), deformer.positions(), deformer.orientation_record(), point_data, cell_data);
+  motion_data_arrays(state.network, state.positions, state.record, point_data, cell_data);
   // per network vertex -> per file vertex (zero for a vertex no element uses)
   for(Data_array& a : point_data) {
     std::vector<double> values(setup.mesh->points.size() * std::size_t(a.components), 0.0);
@@ -111,16 +111,16 @@ void state_arrays(const Mesh_setup<D>& setup, const Network_deformer<D>& deforme
 }
 
 template <int D>
-void write_final_mesh(const Output_file& output, const Mesh_setup<D>& setup, const Network_deformer<D>& deformer)
+void write_final_mesh(const Output_file& output, const Mesh_setup<D>& setup, const Mesh_state<D>& state)
 {
-  const Indexed_mesh<D> mesh = moved_mesh(setup, deformer);
+  const Indexed_mesh<D> mesh = moved_mesh(setup, state);
   if(output.kind == Output_file::Kind::medit)
     write_medit(mesh, output.path);
   else if(output.kind == Output_file::Kind::gmsh || output.kind == Output_file::Kind::su2)
     write_mesh(output.path, mesh); // by extension: Gmsh 4.1 ASCII or SU2
   else {
     std::vector<Data_array> point_data, cell_data;
-    state_arrays(setup, deformer, point_data, cell_data);
+    state_arrays(setup, state, point_data, cell_data);
     write_vtu(mesh, output.path, point_data, cell_data);
   }
 }
@@ -133,14 +133,14 @@ Pvd_series::Pvd_series(std::string path, std::size_t steps) : path_(std::move(pa
 }
 
 template <int D>
-void Pvd_series::add_frame(std::size_t step, const Mesh_setup<D>& setup, const Network_deformer<D>& deformer)
+void Pvd_series::add_frame(std::size_t step, const Mesh_setup<D>& setup, const Mesh_state<D>& state)
 {
   char number[32];
   std::snprintf(number, sizeof number, "_%0*zu.vtu", digits_, step);
   const std::string file = stem_ + number;
-  const Indexed_mesh<D> mesh = moved_mesh(setup, deformer);
+  const Indexed_mesh<D> mesh = moved_mesh(setup, state);
   std::vector<Data_array> point_data, cell_data;
-  state_arrays(setup, deformer, point_data, cell_data);
+  state_arrays(setup, state, point_data, cell_data);
   written_.push_back(file);
   write_vtu(mesh, file, point_data, cell_data);
   // stored relative to the .pvd's directory: the frames sit beside it
@@ -162,14 +162,14 @@ void Pvd_series::discard()
   entries_.clear();
 }
 
-template void state_arrays<2>(const Mesh_setup<2>&, const Network_deformer<2>&, std::vector<Data_array>&,
+template void state_arrays<2>(const Mesh_setup<2>&, const Mesh_state<2>&, std::vector<Data_array>&,
                               std::vector<Data_array>&);
-template void state_arrays<3>(const Mesh_setup<3>&, const Network_deformer<3>&, std::vector<Data_array>&,
+template void state_arrays<3>(const Mesh_setup<3>&, const Mesh_state<3>&, std::vector<Data_array>&,
                               std::vector<Data_array>&);
-template void write_final_mesh<2>(const Output_file&, const Mesh_setup<2>&, const Network_deformer<2>&);
-template void write_final_mesh<3>(const Output_file&, const Mesh_setup<3>&, const Network_deformer<3>&);
-template void Pvd_series::add_frame<2>(std::size_t, const Mesh_setup<2>&, const Network_deformer<2>&);
-template void Pvd_series::add_frame<3>(std::size_t, const Mesh_setup<3>&, const Network_deformer<3>&);
+template void write_final_mesh<2>(const Output_file&, const Mesh_setup<2>&, const Mesh_state<2>&);
+template void write_final_mesh<3>(const Output_file&, const Mesh_setup<3>&, const Mesh_state<3>&);
+template void Pvd_series::add_frame<2>(std::size_t, const Mesh_setup<2>&, const Mesh_state<2>&);
+template void Pvd_series::add_frame<3>(std::size_t, const Mesh_setup<3>&, const Mesh_state<3>&);
 
 } // namespace cli
 } // namespace spring_motion

@@ -37,16 +37,33 @@ bool same_file(const std::string& a, const std::string& b);
 void check_outputs(const std::vector<std::string>& inputs, const std::vector<Output_file>& outputs,
                    const std::string& report);
 
+/// A state of the whole mesh to write: its network, the positions (one per
+/// network vertex) and the orientations validity is judged against. From a
+/// deformer, or gathered from the parts of a partitioned run.
+template <int D>
+struct Mesh_state
+{
+  const Spring_network<D>& network;
+  const std::vector<std::array<double, D>>& positions;
+  const Orientation_record& record;
+};
+
+template <int D>
+Mesh_state<D> state_of(const Network_deformer<D>& deformer)
+{
+  return {deformer.network(), deformer.positions(), deformer.orientation_record()};
+}
+
 /// The arrays written with a state of the mesh: point "displacement" from
 /// the initial points, cell "skewness" (R), "valid" (1, or 0 for an element
 /// inverted against its initial orientation) and "label".
 template <int D>
-void state_arrays(const Mesh_setup<D>& setup, const Network_deformer<D>& deformer, std::vector<Data_array>& point_data,
+void state_arrays(const Mesh_setup<D>& setup, const Mesh_state<D>& state, std::vector<Data_array>& point_data,
                   std::vector<Data_array>& cell_data);
 
-/// Writes the current state of `deformer` to a .vtu or .mesh output.
+/// Writes `state` to a .vtu or .mesh output.
 template <int D>
-void write_final_mesh(const Output_file& output, const Mesh_setup<D>& setup, const Network_deformer<D>& deformer);
+void write_final_mesh(const Output_file& output, const Mesh_setup<D>& setup, const Mesh_state<D>& state);
 
 /// A .pvd time series: frames NAME_<step>.vtu beside NAME.pvd, time = step
 /// number. The .pvd is written once, by finish(); discard() removes the
@@ -56,7 +73,7 @@ class Pvd_series
 public:
   Pvd_series(std::string path, std::size_t steps);
   template <int D>
-  void add_frame(std::size_t step, const Mesh_setup<D>& setup, const Network_deformer<D>& deformer);
+  void add_frame(std::size_t step, const Mesh_setup<D>& setup, const Mesh_state<D>& state);
   void finish();
   void discard();
   const std::string& path() const { return path_; }

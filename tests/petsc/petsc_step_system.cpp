@@ -8,6 +8,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -74,7 +75,22 @@ double check(MPI_Comm comm, int m, bool block, PetscInt& iterations)
   v.initial = g.initial.data();
   std::vector<std::array<double, D>> x;
   spring_motion::internal::Petsc_solve_report report;
-  if(spring_motion::internal::petsc_solve_step_system<D>(comm, v, 1e-12, x, report) != 0 || !report.converged)
+  // the view replicated on every rank; the whole system numbers the rows in
+  // reverse, so that the view's order and PETSc's differ, and each rank owns
+  // a contiguous range of the reversed rows (a rank may own none)
+  std::vector<std::size_t> vertex_row(v.rows);
+  for(std::size_t r = 0; r < v.rows; ++r)
+    vertex_row[g.vertices[r]] = v.rows - 1 - r;
+  int size, rank;
+  MPI_Comm_size(comm, &size);
+  MPI_Comm_rank(comm, &rank);
+  spring_motion::internal::Petsc_rows rows;
+  rows.vertex_row = vertex_row.data();
+  rows.total = v.rows;
+  rows.first = v.rows / std::size_t(size) * std::size_t(rank) + std::min<std::size_t>(std::size_t(rank), v.rows % std::size_t(size));
+  rows.owned = v.rows / std::size_t(size) + (std::size_t(rank) < v.rows % std::size_t(size) ? 1 : 0);
+  if(spring_motion::internal::petsc_solve_step_system<D>(comm, v, rows, 1e-12, x, report) != 0 ||
+     !report.converged)
     return INFINITY;
   iterations = report.iterations;
 

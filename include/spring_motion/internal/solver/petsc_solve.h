@@ -21,34 +21,47 @@ struct Petsc_solve_report
   bool converged = true;
 };
 
+/// Where the rows of a step system go in a distributed PETSc matrix:
+/// `vertex_row[v]` is the row of the whole system of the view's network
+/// vertex v (a free vertex); this rank owns rows [first, first + owned) of
+/// `total`. The view may hold more rows than this rank owns (the ghosts of a
+/// mesh part, or the whole system when it is replicated): only the owned
+/// ones are inserted, and every row of the view gets its solution back.
+struct Petsc_rows
+{
+  const std::size_t* vertex_row = nullptr;
+  std::size_t first = 0, owned = 0, total = 0;
+};
+
 /// Solves a step's free system (the same rows, values, right-hand side and
 /// start the shared-memory solver gets) with KSP CG preconditioned by GAMG on
-/// the ranks of `comm`. The system is replicated: every rank holds the whole
-/// view and inserts only the rows PETSc gives it, so no row is sent; the
-/// solution is gathered back to every rank in `x` (one entry per row).
+/// the ranks of `comm`. Each rank inserts the rows it owns under `rows`, and
+/// receives the solution of every row of its view in `x` (in the view's order).
 /// A scalar system is an AIJ matrix solved once per component; a block system
 /// is an AIJ matrix of block size D, one solve for all components, so GAMG
 /// aggregates whole vertices and sees the D x D coupling. `rtol` bounds the preconditioned residual norm
 /// relative to the right-hand side's.
 template <int D>
-PetscErrorCode petsc_solve_step_system(MPI_Comm comm, const Step_system_view<D>& s, double rtol,
-                                       std::vector<std::array<double, D>>& x, Petsc_solve_report& report)
+PetscErrorCode petsc_solve_step_system(MPI_Comm comm, const Step_system_view<D>& s, const Petsc_rows& rows,
+                                       double rtol, std::vector<std::array<double, D>>& x,
+                                       Petsc_solve_report& report)
 {
-  const PetscInt n = PetscInt(s.rows);
   const PetscInt bs = s.block ? D : 1;
-  // contiguous block rows, as even as can be; a rank may own none
-  PetscMPIInt size, rank;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  const PetscInt first = n / size * rank + std::min<PetscInt>(rank, n % size);
-  const PetscInt end = first + n / size + (rank < n % size ? 1 : 0);
+  const PetscInt first = PetscInt(rows.first), end = PetscInt(rows.first + rows.owned);
+  // the whole system's row of each row of the view
+  std::vector<PetscInt> global(s.rows);
+  for(std::size_t r = 0; r < s.rows; ++r)
+    global[r] = PetscInt(rows.vertex_row[s.vertices[r]]);
+  const auto owned = [&](PetscInt g) { return g >= first && g < end; };
   std::vector<PetscInt> d_nnz(std::size_t(end - first), 1), o_nnz(std::size_t(end - first), 0);
-  for(PetscInt r = first; r < end; ++r)
-    for(Index q = s.row_offsets[r]; q < s.row_offsets[r + 1]; ++q)
-      ++(PetscInt(s.columns[q]) >= first && PetscInt(s.columns[q]) < end ? d_nnz : o_nnz)[std::size_t(r - first)];
+  for(std::size_t r = 0; r < s.rows; ++r)
+    if(owned(global[r]))
+      for(Index q = s.row_offsets[r]; q < s.row_offsets[r + 1]; ++q)
+        ++(owned(global[s.columns[q]]) ? d_nnz : o_nnz)[std::size_t(global[r] - first)];
   Mat A;
   PetscCall(MatCreate(comm, &A));
-  PetscCall(MatSetSizes(A, (end - first) * bs, (end - first) * bs, n * bs, n * bs));
+  PetscCall(MatSetSizes(A, (end - first) * bs, (end - first) * bs, PetscInt(rows.total) * bs,
+                        PetscInt(rows.total) * bs));
   // AIJ with block size D, not BAIJ: GAMG (PETSc 3.18) builds its graph from
   // AIJ only, and reads the block size as the number of components
   PetscCall(MatSetType(A, MATAIJ));
@@ -56,25 +69,26 @@ PetscErrorCode petsc_solve_step_system(MPI_Comm comm, const Step_system_view<D>&
   PetscCall(MatXAIJSetPreallocation(A, bs, d_nnz.data(), o_nnz.data(), nullptr, nullptr));
   {
     std::vector<PetscInt> cols;
-    std::vector<PetscScalar> vals;
-    for(PetscInt r = first; r < end; ++r) {
-      const std::size_t R = std::size_t(r);
-      cols.assign(1, r);
+    std::vector<PetscScalar> vals, row;
+    for(std::size_t R = 0; R < s.rows; ++R) {
+      if(!owned(global[R]))
+        continue;
+      cols.assign(1, global[R]);
       vals.assign(s.diagonal + R * bs * bs, s.diagonal + (R + 1) * bs * bs);
       for(Index q = s.row_offsets[R]; q < s.row_offsets[R + 1]; ++q) {
-        cols.push_back(PetscInt(s.columns[q]));
+        cols.push_back(global[s.columns[q]]);
         for(PetscInt a = 0; a < bs * bs; ++a)
           vals.push_back(s.values[std::size_t(q) * bs * bs + a]);
       }
       // values of a row of blocks, laid out as PETSc's row-oriented input:
       // block row a of every entry, entry after entry
-      std::vector<PetscScalar> row(vals.size());
+      row.resize(vals.size());
       const std::size_t m = cols.size();
       for(std::size_t e = 0; e < m; ++e)
         for(PetscInt a = 0; a < bs; ++a)
           for(PetscInt c = 0; c < bs; ++c)
             row[std::size_t(a) * m * bs + e * bs + c] = vals[e * bs * bs + a * bs + c];
-      PetscCall(MatSetValuesBlocked(A, 1, &r, PetscInt(m), cols.data(), row.data(), INSERT_VALUES));
+      PetscCall(MatSetValuesBlocked(A, 1, &global[R], PetscInt(m), cols.data(), row.data(), INSERT_VALUES));
     }
   }
   PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
@@ -83,8 +97,13 @@ PetscErrorCode petsc_solve_step_system(MPI_Comm comm, const Step_system_view<D>&
 
   Vec b, u, all;
   PetscCall(MatCreateVecs(A, &u, &b));
+  // every row of the view, owned or not, gets its solution from its owner
+  IS wanted;
+  PetscCall(ISCreateBlock(PETSC_COMM_SELF, bs, PetscInt(s.rows), global.data(), PETSC_COPY_VALUES, &wanted));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, PetscInt(s.rows) * bs, &all));
   VecScatter to_all;
-  PetscCall(VecScatterCreateToAll(u, &to_all, &all));
+  PetscCall(VecScatterCreate(u, wanted, all, nullptr, &to_all));
+  PetscCall(ISDestroy(&wanted));
   KSP ksp;
   PetscCall(KSPCreate(comm, &ksp));
   PetscCall(KSPSetOperators(ksp, A, A));
@@ -103,12 +122,13 @@ PetscErrorCode petsc_solve_step_system(MPI_Comm comm, const Step_system_view<D>&
     PetscScalar *bv, *uv;
     PetscCall(VecGetArray(b, &bv));
     PetscCall(VecGetArray(u, &uv));
-    for(PetscInt r = first; r < end; ++r)
-      for(PetscInt k = 0; k < bs; ++k) {
-        const PetscInt comp = s.block ? k : c;
-        bv[(r - first) * bs + k] = s.rhs[r][comp];
-        uv[(r - first) * bs + k] = s.initial[r][comp];
-      }
+    for(std::size_t r = 0; r < s.rows; ++r)
+      if(owned(global[r]))
+        for(PetscInt k = 0; k < bs; ++k) {
+          const PetscInt comp = s.block ? k : c;
+          bv[(global[r] - first) * bs + k] = s.rhs[r][comp];
+          uv[(global[r] - first) * bs + k] = s.initial[r][comp];
+        }
     PetscCall(VecRestoreArray(b, &bv));
     PetscCall(VecRestoreArray(u, &uv));
     PetscCall(KSPSolve(ksp, b, u));
@@ -122,9 +142,9 @@ PetscErrorCode petsc_solve_step_system(MPI_Comm comm, const Step_system_view<D>&
     PetscCall(VecScatterEnd(to_all, u, all, INSERT_VALUES, SCATTER_FORWARD));
     const PetscScalar* av;
     PetscCall(VecGetArrayRead(all, &av));
-    for(PetscInt r = 0; r < n; ++r)
+    for(std::size_t r = 0; r < s.rows; ++r)
       for(PetscInt k = 0; k < bs; ++k)
-        x[std::size_t(r)][s.block ? k : c] = PetscRealPart(av[r * bs + k]);
+        x[r][s.block ? k : c] = PetscRealPart(av[PetscInt(r) * bs + k]);
     PetscCall(VecRestoreArrayRead(all, &av));
   }
   PetscCall(KSPDestroy(&ksp));

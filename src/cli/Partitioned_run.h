@@ -1,0 +1,236 @@
+// Copyright (c) 2026 SpringMotion developers.
+// Private to the spring-motion executable, built with PETSc only: the mesh
+// partitioned over the MPI ranks (--backend petsc, docs/scaling.md).
+#ifndef SPRING_MOTION_SRC_CLI_PARTITIONED_RUN_H
+#define SPRING_MOTION_SRC_CLI_PARTITIONED_RUN_H
+
+#include <spring_motion/Deform_report.h>
+#include <spring_motion/Error.h>
+#include <spring_motion/Network_deformer.h>
+#include <spring_motion/internal/geometry/partition.h>
+#include <spring_motion/internal/solver/petsc_solve.h>
+#include <spring_motion/skewness.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace spring_motion {
+namespace cli {
+
+/// One rank's share of a run on PETSc. Every rank has read the mesh and
+/// assigned the roles; each keeps its part (owned vertices, one layer of
+/// ghosts) and runs a Network_deformer on it: it computes the stiffness of
+/// its elements, inserts its owned rows into the distributed matrix, gets
+/// its ghosts' solution back from their owners, checks its elements exactly,
+/// and agrees with the other ranks on the step's validity. Rank 0 gathers the
+/// positions to write them.
+template <int D>
+class Partitioned_run
+{
+public:
+  using Point = std::array<double, D>;
+
+  Partitioned_run(MPI_Comm comm, const Spring_network<D>& whole, const std::vector<Vertex_role>& roles) : comm_(comm)
+  {
+    int ranks;
+    MPI_Comm_size(comm_, &ranks);
+    MPI_Comm_rank(comm_, &rank_);
+    check_vertex_roles(whole, roles); // on the whole mesh: a part may have no moving vertex
+    part_ = internal::extract_part(whole, roles, internal::partition_vertices(whole, ranks), ranks, rank_);
+    rows_.vertex_row = part_.free_row.data();
+    rows_.first = part_.first_row;
+    rows_.owned = part_.owned_rows;
+    rows_.total = part_.total_rows;
+    counts_.vertices = whole.number_of_vertices();
+    counts_.elements = whole.number_of_elements();
+    std::vector<char> used(whole.number_of_vertices(), 0);
+    for(const auto& e : whole.elements)
+      for(Index v : e)
+        used[v] = 1;
+    for(Index v = 0; v < used.size(); ++v)
+      if(used[v] && roles[v] != Vertex_role::free)
+        ++(roles[v] == Vertex_role::moving ? counts_.moving_vertices : counts_.fixed_vertices);
+  }
+
+  int rank() const { return rank_; }
+
+  /// The part's network and roles, for the deformer (taken once).
+  Spring_network<D> take_network() { return std::move(part_.network); }
+  std::vector<Vertex_role> take_roles() { return std::move(part_.roles); }
+
+  Solve_report solve(const Step_system_view<D>& view, std::vector<Point>& x, double rtol)
+  {
+    internal::Petsc_solve_report pr;
+    if(internal::petsc_solve_step_system<D>(comm_, view, rows_, rtol, x, pr) != 0)
+      throw Error("PETSc's solve of a step failed");
+    Solve_report r;
+    r.iterations = std::size_t(pr.iterations);
+    r.converged = pr.converged;
+    return r;
+  }
+
+  bool agree(bool valid) const
+  {
+    int mine = valid ? 1 : 0, all = 0;
+    MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LAND, comm_);
+    return all != 0;
+  }
+
+  /// The positions of the whole mesh on rank 0 (elsewhere left empty):
+  /// every rank sends its owned vertices'; a vertex no element uses keeps
+  /// its initial point. Collective.
+  void gather(const Network_deformer<D>& deformer, const Spring_network<D>& whole, std::vector<Point>& positions) const
+  {
+    std::vector<double> mine;
+    for(std::size_t i = 0; i < part_.owned_vertices; ++i) {
+      mine.push_back(double(part_.global_vertex[i]));
+      for(int c = 0; c < D; ++c)
+        mine.push_back(deformer.positions()[i][std::size_t(c)]);
+    }
+    const std::vector<double> all = gather_to_root(mine);
+    if(rank_ != 0)
+      return;
+    positions = whole.points;
+    for(std::size_t k = 0; k < all.size(); k += D + 1)
+      for(int c = 0; c < D; ++c)
+        positions[std::size_t(all[k])][std::size_t(c)] = all[k + 1 + std::size_t(c)];
+  }
+
+  /// The report of the whole mesh from the parts' reports, on every rank:
+  /// the extremes of every step and of the final state over all parts, the
+  /// final histograms over each part's counted elements (an element is
+  /// counted by one part only), the elements of an invalid step by their
+  /// whole-mesh numbers (on rank 0). Collective.
+  void reduce(Deform_report& rep, const Network_deformer<D>& deformer, int threads) const
+  {
+    rep.vertices = counts_.vertices;
+    rep.elements = counts_.elements;
+    rep.moving_vertices = counts_.moving_vertices;
+    rep.fixed_vertices = counts_.fixed_vertices;
+    std::vector<double> lows, highs;
+    for(const Step_report& s : rep.steps) {
+      lows.insert(lows.end(), {s.min_angle_deg_moving, s.min_angle_deg_all, s.min_size_ratio});
+      highs.insert(highs.end(), {s.max_skewness_moving, s.max_skewness_all, s.max_size_ratio});
+    }
+    std::vector<double> r = element_skewness(deformer.network(), deformer.positions(), threads);
+    std::vector<char> all(r.size()), moving(r.size());
+    for(std::size_t t = 0; t < r.size(); ++t) {
+      all[t] = part_.counted[t];
+      moving[t] = part_.counted[t] && deformer.touches_moving(t);
+    }
+    const Skewness_histogram h_all = skewness_histogram(r, [&](std::size_t t) { return all[t] != 0; });
+    const Skewness_histogram h_moving = skewness_histogram(r, [&](std::size_t t) { return moving[t] != 0; });
+    lows.insert(lows.end(), {rep.min_angle_deg_moving, rep.min_angle_deg_all, rep.min_size_ratio});
+    highs.insert(highs.end(), {rep.max_size_ratio, h_all.max, h_moving.max});
+    MPI_Allreduce(MPI_IN_PLACE, lows.data(), int(lows.size()), MPI_DOUBLE, MPI_MIN, comm_);
+    MPI_Allreduce(MPI_IN_PLACE, highs.data(), int(highs.size()), MPI_DOUBLE, MPI_MAX, comm_);
+    for(std::size_t i = 0; i < rep.steps.size(); ++i) {
+      Step_report& s = rep.steps[i];
+      std::tie(s.min_angle_deg_moving, s.min_angle_deg_all, s.min_size_ratio) =
+          std::make_tuple(lows[3 * i], lows[3 * i + 1], lows[3 * i + 2]);
+      std::tie(s.max_skewness_moving, s.max_skewness_all, s.max_size_ratio) =
+          std::make_tuple(highs[3 * i], highs[3 * i + 1], highs[3 * i + 2]);
+    }
+    const std::size_t f = 3 * rep.steps.size();
+    rep.min_angle_deg_moving = lows[f];
+    rep.min_angle_deg_all = lows[f + 1];
+    rep.min_size_ratio = lows[f + 2];
+    rep.max_size_ratio = highs[f];
+    rep.quality_all = sum(h_all, highs[f + 1]);
+    rep.quality_moving = sum(h_moving, highs[f + 2]);
+    int converged = rep.converged ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &converged, 1, MPI_INT, MPI_LAND, comm_);
+    rep.converged = converged != 0;
+    if(rep.first_invalid) {
+      std::vector<double> mine;
+      for(std::size_t t : rep.first_invalid->elements)
+        mine.push_back(double(part_.global_element[t]));
+      std::vector<double> every = gather_to_root(mine);
+      std::sort(every.begin(), every.end());
+      every.erase(std::unique(every.begin(), every.end()), every.end());
+      rep.first_invalid->elements.assign(every.begin(), every.end());
+      rep.steps.back().inverted = every.size();
+    }
+  }
+
+  /// A library error of this rank's part, naming the vertex or element by
+  /// its whole-mesh number, as an error of the whole network would.
+  Error whole_mesh_error(const Error& e) const
+  {
+    const auto renamed = [](std::string message, const std::string& noun, std::size_t from, std::size_t to) {
+      const std::string old_name = noun + " " + std::to_string(from), new_name = noun + " " + std::to_string(to);
+      for(std::size_t at = message.find(old_name); at != std::string::npos; at = message.find(old_name, at + 1)) {
+        const std::size_t end = at + old_name.size();
+        if(end == message.size() || !std::isdigit(static_cast<unsigned char>(message[end]))) {
+          message.replace(at, old_name.size(), new_name);
+          at += new_name.size() - 1;
+        }
+      }
+      return message;
+    };
+    if(const auto* v = dynamic_cast<const Vertex_error*>(&e))
+      if(v->vertex() < part_.global_vertex.size()) {
+        const std::size_t g = part_.global_vertex[v->vertex()];
+        return Vertex_error(renamed(e.what(), "vertex", v->vertex(), g), g);
+      }
+    if(const auto* t = dynamic_cast<const Element_error*>(&e))
+      if(t->element() < part_.global_element.size()) {
+        const std::size_t g = part_.global_element[t->element()];
+        return Element_error(renamed(e.what(), "element", t->element(), g), g);
+      }
+    return e;
+  }
+
+private:
+  // the concatenation of every rank's `mine` on rank 0 (empty elsewhere)
+  std::vector<double> gather_to_root(const std::vector<double>& mine) const
+  {
+    int ranks;
+    MPI_Comm_size(comm_, &ranks);
+    int count = int(mine.size());
+    std::vector<int> counts(std::size_t(ranks), 0), offsets(std::size_t(ranks) + 1, 0);
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
+    for(int r = 0; r < ranks; ++r)
+      offsets[std::size_t(r) + 1] = offsets[std::size_t(r)] + counts[std::size_t(r)];
+    std::vector<double> all(rank_ == 0 ? std::size_t(offsets.back()) : 0);
+    MPI_Gatherv(mine.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, 0, comm_);
+    return all;
+  }
+
+  // a histogram of all parts' counted elements, from each part's
+  Skewness_histogram sum(const Skewness_histogram& mine, double max) const
+  {
+    std::vector<double> bins(mine.fractions.size() + 2);
+    for(std::size_t b = 0; b < mine.fractions.size(); ++b)
+      bins[b] = std::round(mine.fractions[b] * double(mine.count));
+    bins[mine.fractions.size()] = double(mine.count);
+    bins[mine.fractions.size() + 1] = mine.count > 0 ? mine.mean * double(mine.count) : 0.0;
+    MPI_Allreduce(MPI_IN_PLACE, bins.data(), int(bins.size()), MPI_DOUBLE, MPI_SUM, comm_);
+    Skewness_histogram h;
+    h.count = std::size_t(bins[mine.fractions.size()]);
+    h.fractions.assign(mine.fractions.size(), 0.0);
+    if(h.count > 0) {
+      for(std::size_t b = 0; b < h.fractions.size(); ++b)
+        h.fractions[b] = bins[b] / double(h.count);
+      h.mean = bins[mine.fractions.size() + 1] / double(h.count);
+    }
+    h.max = max;
+    return h;
+  }
+
+  MPI_Comm comm_;
+  int rank_ = 0;
+  internal::Mesh_part<D> part_;
+  internal::Petsc_rows rows_;
+  Deform_report counts_; // the whole mesh's vertices, elements, moving and fixed vertices
+};
+
+} // namespace cli
+} // namespace spring_motion
+
+#endif

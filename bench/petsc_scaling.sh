@@ -5,12 +5,17 @@
 # missing), STEPS steps of grid-scaled springs to 10 degrees, run with the
 # shared backend (1 thread, then the default) and with --backend petsc on 1
 # and 2 MPI ranks (one thread each). Prints wall time (whole process), the
-# solve time and the solver iterations from each run's report.
-#   bench/petsc_scaling.sh BUILD_PETSC [STEPS]     (BUILD_PETSC: a build with SPRING_MOTION_WITH_PETSC=ON)
+# stiffness and solve times and the solver iterations from each run's report
+# (rank 0's part on PETSc), the run's peak memory, and the final state's
+# worst R and smallest dihedral angle (which must agree between the runs). With BOX_N, the same
+# four runs on the structured box with a hole of scripts/make_box_mesh.py
+# (BOX_N = 100: about a million vertices), 2 steps to 1 degree.
+#   bench/petsc_scaling.sh BUILD_PETSC [STEPS [BOX_N]]     (BUILD_PETSC: a build with SPRING_MOTION_WITH_PETSC=ON)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:?usage: bench/petsc_scaling.sh BUILD_PETSC [STEPS]}
 steps=${2:-10}
+box=${3:-}
 cli="$build/src/cli/spring-motion"
 mesh="$build/gmsh_wing/wing.msh"
 [ -f "$mesh" ] || { mkdir -p "$(dirname "$mesh")"; /usr/bin/python3 scripts/make_gmsh_wing.py "$mesh"; }
@@ -19,24 +24,39 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 args=(deform "$mesh" --moving wing --pitch 10 --center 0.5,0,0 --axis 0,0,1 --steps "$steps" --quiet)
 echo "uptime before: $(uptime)"
-printf '%-28s %10s %10s %11s\n' "run" "wall s" "solve s" "iterations"
+printf '%-28s %8s %11s %8s %11s %9s %8s %8s\n' "run" "wall s" "stiffness s" "solve s" "iterations" "peak MiB" "worst R" "min deg"
+# peak MiB: the largest resident set of the run's processes (getrusage of
+# the children: under mpiexec, the largest rank)
 run() {
   local name=$1; shift
-  local t0 t1
-  t0=$(date +%s.%N)
-  "$@" --report "$work/r.json" > /dev/null
-  t1=$(date +%s.%N)
-  /usr/bin/python3 - "$name" "$t0" "$t1" "$work/r.json" <<'PY'
-import json, sys
-name, t0, t1, path = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), sys.argv[4]
+  /usr/bin/python3 - "$name" "$work/r.json" "$@" <<'PY'
+import json, resource, subprocess, sys, time
+name, path, cmd = sys.argv[1], sys.argv[2], sys.argv[3:]
+t0 = time.monotonic()
+subprocess.run(cmd + ["--report", path], check=True, stdout=subprocess.DEVNULL)
+wall = time.monotonic() - t0
+peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
 r = json.load(open(path))
+stiffness = sum(s["seconds"]["stiffness"] for s in r["steps"])
 solve = sum(s["seconds"]["solve"] for s in r["steps"])
 its = sum(s["iterations"] for s in r["steps"])
-print("%-28s %10.2f %10.2f %11d" % (name, t1 - t0, solve, its))
+q = r["quality"]  # the final state: the largest R and the smallest dihedral angle over all tetrahedra
+print("%-28s %8.2f %11.2f %8.2f %11d %9.0f %8.4f %8.3f"
+      % (name, wall, stiffness, solve, its, peak, q["all"]["max"], q["all"]["min_angle_deg"]))
 PY
 }
-run "shared, 1 thread" "$cli" "${args[@]}" --threads 1
-run "shared, default threads" "$cli" "${args[@]}"
-run "petsc, 1 rank" env OMP_NUM_THREADS=1 "$cli" "${args[@]}" --threads 1 --backend petsc
-run "petsc, 2 ranks" mpiexec -n 2 --oversubscribe env OMP_NUM_THREADS=1 "$cli" "${args[@]}" --threads 1 --backend petsc
+four_runs() {
+  run "shared, 1 thread" "$cli" "${args[@]}" --threads 1
+  run "shared, default threads" "$cli" "${args[@]}"
+  run "petsc, 1 rank" env OMP_NUM_THREADS=1 "$cli" "${args[@]}" --threads 1 --backend petsc
+  run "petsc, 2 ranks" mpiexec -n 2 --oversubscribe env OMP_NUM_THREADS=1 "$cli" "${args[@]}" --threads 1 --backend petsc
+}
+echo "Gmsh wing, $steps steps of grid_scaled springs to 10 degrees"
+four_runs
+if [ -n "$box" ]; then
+  /usr/bin/python3 scripts/make_box_mesh.py "$box" "$work/box.mesh"
+  args=(deform "$work/box.mesh" --moving 1 --pitch 1 --center 0.5,0.5,0.5 --steps 2 --quiet)
+  echo "box with a hole, $box^3 cubes, 2 steps of grid_scaled springs to 1 degree"
+  four_runs
+fi
 echo "uptime after: $(uptime)"

@@ -336,8 +336,8 @@ template <int D, class Motion>
 int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Vertex_role> roles, const Motion& motion,
                std::ostream& out, std::ostream& err, bool err_is_terminal)
 {
-  using Point = std::array<double, D>;
 #ifdef SPRING_MOTION_WITH_PETSC
+  using Point = std::array<double, D>;
   // the mesh partitioned over the ranks: each runs a deformer on its part
   std::optional<Partitioned_run<D>> partitioned;
   if(s.petsc)

@@ -75,12 +75,7 @@ void check_same(const Outcome& a, const Outcome& b)
 // must repeat), runs `model`, and returns everything it produced.
 Outcome naca_run(const std::string& model, double amplitude, std::size_t halvings)
 {
-  Mesh_2_cdt cdt;
-  make_naca0012_mesh_2(cdt);
-  const auto net = extract_spring_network(cdt).network;
-  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
-                                    return is_on_naca0012_airfoil(p[0], p[1]);
-                                  }));
+  const auto [net, roles] = spring_motion_test::naca0012_network();
   Network_deformer<2> d(net, roles);
   Deform_options options;
   options.number_of_steps = 10;

@@ -6,6 +6,8 @@
 #include <spring_motion/spring_motion.h>
 #include <spring_motion/stiffness/model_by_name.h>
 
+#include "test_meshes.h"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -510,66 +512,10 @@ TEST_CASE("model table: one name per built-in model, each giving that model, bad
 
 namespace {
 
-// [0,n]^D cut into simplices (Kuhn: each cell along the permutations of its
-// axes), interior vertices jittered
-template <int D>
-Indexed_mesh<D> kuhn_grid(int n)
-{
-  Indexed_mesh<D> mesh;
-  const int s = n + 1;
-  auto index = [&](std::array<int, D> c) {
-    int k = 0;
-    for(int a = D - 1; a >= 0; --a)
-      k = k * s + c[a];
-    return std::uint32_t(k);
-  };
-  const int total = D == 2 ? s * s : s * s * s;
-  for(int k = 0; k < total; ++k) {
-    std::array<double, D> p;
-    bool interior = true;
-    int r = k;
-    for(int a = 0; a < D; ++a) {
-      const int c = r % s;
-      r /= s;
-      p[a] = c;
-      interior = interior && c > 0 && c < n;
-    }
-    if(interior)
-      for(int a = 0; a < D; ++a)
-        p[a] += 0.15 * std::sin(7.0 * k + 3.0 * a);
-    mesh.points.push_back(p);
-  }
-  std::array<int, D> perm;
-  for(int a = 0; a < D; ++a)
-    perm[a] = a;
-  const int cells = D == 2 ? n * n : n * n * n;
-  for(int cell = 0; cell < cells; ++cell) {
-    std::array<int, D> base;
-    int r = cell;
-    for(int a = 0; a < D; ++a) {
-      base[a] = r % n;
-      r /= n;
-    }
-    std::array<int, D> order = perm;
-    do {
-      typename Indexed_mesh<D>::Element e;
-      std::array<int, D> c = base;
-      e[0] = index(c);
-      for(int a = 0; a < D; ++a) {
-        ++c[order[a]];
-        e[a + 1] = index(c);
-      }
-      mesh.elements.push_back(e);
-    } while(std::next_permutation(order.begin(), order.end()));
-  }
-  mesh.element_labels.assign(mesh.elements.size(), 0);
-  return mesh;
-}
-
 template <int D>
 double worst_translation_error(const std::string& model_name, const std::array<double, D>& d)
 {
-  const Indexed_mesh<D> original = kuhn_grid<D>(D == 2 ? 5 : 3);
+  const Indexed_mesh<D> original = spring_motion_test::kuhn_grid<D>(D == 2 ? 5 : 3);
   Indexed_mesh<D> mesh = original;
   Deform_options options;
   options.number_of_steps = 2;

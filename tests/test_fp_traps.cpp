@@ -124,12 +124,7 @@ TEST_CASE("fp traps: every 2D model on an annulus rotated until it fails", "[fp]
 
 TEST_CASE("fp traps: every 2D model on the NACA0012 pitch beyond its limit", "[fp]")
 {
-  Mesh_2_cdt cdt;
-  make_naca0012_mesh_2(cdt);
-  const auto net = extract_spring_network(cdt).network;
-  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
-                                    return is_on_naca0012_airfoil(p[0], p[1]);
-                                  }));
+  const auto [net, roles] = spring_motion_test::naca0012_network();
   Fp_traps traps;
   Deform_options options;
   options.number_of_steps = 10;

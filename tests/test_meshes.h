@@ -1,13 +1,18 @@
-// Small Mesh_2 domains shared by the tests.
+// Small meshes shared by the tests: Mesh_2 domains, the NACA0012 airfoil
+// as a spring network with its roles, Kuhn grids.
 #ifndef SPRING_MOTION_TESTS_TEST_MESHES_H
 #define SPRING_MOTION_TESTS_TEST_MESHES_H
 
 #include <naca0012/Naca0012_mesh_2.h>
+#include <spring_motion/spring_motion.h>
 
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <list>
 #include <vector>
 
@@ -60,6 +65,81 @@ inline void make_annulus(CDT& cdt, double a = 0.5, double b = 2.0, int n1 = 24, 
   std::list<Point_2> seeds{Point_2(0, 0)};
   CGAL::refine_Delaunay_mesh_2(cdt, seeds.begin(), seeds.end(),
                                CGAL::Delaunay_mesh_size_criteria_2<CDT>(0.125, size));
+}
+
+/// The NACA0012 airfoil's Mesh_2 domain, built from scratch, as a spring
+/// network whose airfoil vertices move (the rest by assign_roles' defaults).
+struct Naca0012_network
+{
+  spring_motion::Spring_network<2> network;
+  std::vector<spring_motion::Vertex_role> roles;
+};
+
+inline Naca0012_network naca0012_network()
+{
+  CDT cdt;
+  spring_motion::make_naca0012_mesh_2(cdt);
+  Naca0012_network n{spring_motion::extract_spring_network(cdt).network, {}};
+  n.roles = spring_motion::assign_roles(n.network, spring_motion::moving_boundary_where([](const std::array<double, 2>& p) {
+                                          return spring_motion::is_on_naca0012_airfoil(p[0], p[1]);
+                                        }));
+  return n;
+}
+
+// [0,n]^D cut into simplices (Kuhn: each cell along the permutations of its
+// axes), interior vertices jittered
+template <int D>
+inline spring_motion::Indexed_mesh<D> kuhn_grid(int n)
+{
+  spring_motion::Indexed_mesh<D> mesh;
+  const int s = n + 1;
+  auto index = [&](std::array<int, D> c) {
+    int k = 0;
+    for(int a = D - 1; a >= 0; --a)
+      k = k * s + c[a];
+    return std::uint32_t(k);
+  };
+  const int total = D == 2 ? s * s : s * s * s;
+  for(int k = 0; k < total; ++k) {
+    std::array<double, D> p;
+    bool interior = true;
+    int r = k;
+    for(int a = 0; a < D; ++a) {
+      const int c = r % s;
+      r /= s;
+      p[a] = c;
+      interior = interior && c > 0 && c < n;
+    }
+    if(interior)
+      for(int a = 0; a < D; ++a)
+        p[a] += 0.15 * std::sin(7.0 * k + 3.0 * a);
+    mesh.points.push_back(p);
+  }
+  std::array<int, D> perm;
+  for(int a = 0; a < D; ++a)
+    perm[a] = a;
+  const int cells = D == 2 ? n * n : n * n * n;
+  for(int cell = 0; cell < cells; ++cell) {
+    std::array<int, D> base;
+    int r = cell;
+    for(int a = 0; a < D; ++a) {
+      base[a] = r % n;
+      r /= n;
+    }
+    std::array<int, D> order = perm;
+    do {
+      typename spring_motion::Indexed_mesh<D>::Element e;
+      std::array<int, D> c = base;
+      e[0] = index(c);
+      for(int a = 0; a < D; ++a) {
+        ++c[order[a]];
+        e[a + 1] = index(c);
+      }
+      mesh.elements.push_back(e);
+    } while(std::next_permutation(order.begin(), order.end()));
+  }
+  mesh.element_labels.assign(mesh.elements.size(), 0);
+  return mesh;
 }
 
 } // namespace spring_motion_test

@@ -135,12 +135,7 @@ void check_parts(const Spring_network<D>& net, const std::vector<Vertex_role>& r
 
 TEST_CASE("partition: each part's owned rows are the whole system's, NACA0012 airfoil", "[partition]")
 {
-  Mesh_2_cdt cdt;
-  make_naca0012_mesh_2(cdt);
-  const auto net = extract_spring_network(cdt).network;
-  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
-                                    return is_on_naca0012_airfoil(p[0], p[1]);
-                                  }));
+  const auto [net, roles] = spring_motion_test::naca0012_network();
   for(const std::string model : {"grid_scaled", "ball_vertex", "grid_scaled+ball_vertex"})
     for(int parts : {1, 3, 4})
       check_parts<2>(net, roles, Pitch_motion<2>(10, {0.25, 0}), model, parts);
@@ -148,25 +143,10 @@ TEST_CASE("partition: each part's owned rows are the whole system's, NACA0012 ai
 
 TEST_CASE("partition: each part's owned rows are the whole system's, 3D block of cubes", "[partition]")
 {
-  // 5 x 5 x 5 cubes, each split into Kuhn's six tetrahedra; the top face moves
+  // 5 x 5 x 5 cubes of six tetrahedra each, interior vertices jittered; the top face moves
   const int m = 5;
-  std::vector<std::array<double, 3>> points;
-  std::vector<std::array<Index, 4>> tets;
-  auto id = [&](int i, int j, int k) { return Index((k * (m + 1) + j) * (m + 1) + i); };
-  for(int k = 0; k <= m; ++k)
-    for(int j = 0; j <= m; ++j)
-      for(int i = 0; i <= m; ++i)
-        points.push_back({double(i), double(j) + 0.1 * std::sin(i + k), double(k)});
-  const int perm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for(int k = 0; k < m; ++k)
-    for(int j = 0; j < m; ++j)
-      for(int i = 0; i < m; ++i)
-        for(const auto& p : perm) {
-          auto corner = [&](unsigned b) { return id(i + (b & 1), j + ((b >> 1) & 1), k + ((b >> 2) & 1)); };
-          const unsigned a = 1u << p[0], b = a | (1u << p[1]);
-          tets.push_back({corner(0), corner(a), corner(b), corner(7)});
-        }
-  const auto net = make_spring_network<3>(points, tets);
+  const auto grid = spring_motion_test::kuhn_grid<3>(m);
+  const auto net = make_spring_network<3>(grid.points, grid.elements);
   const auto roles = assign_roles(net, [&](const Vertex_info<3>& v) {
     return !v.on_boundary ? Vertex_role::free : (v.point[2] == m ? Vertex_role::moving : Vertex_role::fixed);
   });

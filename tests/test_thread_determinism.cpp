@@ -177,12 +177,7 @@ TEST_CASE("thread determinism: of several failing element matrices, the first in
 TEST_CASE("thread determinism: 2D NACA0012 pitch, default solver and SOR, 1 vs 2 threads bitwise",
           "[determinism]")
 {
-  CDT cdt;
-  make_naca0012_mesh_2(cdt);
-  const auto net = extract_spring_network(cdt).network;
-  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 2>& p) {
-                                    return is_on_naca0012_airfoil(p[0], p[1]);
-                                  }));
+  const auto [net, roles] = naca0012_network();
   const Pitch_motion<2> motion(20, {0.25, 0.0});
   SECTION("default solver") { compare_threads(net, roles, motion, Solver_options{}, 5); }
   SECTION("SOR (the paper's solver)") { compare_threads(net, roles, motion, Solver_options::paper(), 2); }

@@ -22,30 +22,30 @@
 namespace spring_motion {
 namespace cli {
 
-/// One rank's share of a run on PETSc. Every rank has read the mesh and
-/// assigned the roles; each keeps its part (owned vertices, one layer of
-/// ghosts) and runs a Network_deformer on it: it computes the stiffness of
-/// its elements, inserts its owned rows into the distributed matrix, gets
-/// its ghosts' solution back from their owners, checks its elements exactly,
-/// and agrees with the other ranks on the step's validity. Rank 0 gathers the
-/// positions to write them.
+/// One rank's share of a run on PETSc. Rank 0 has read the mesh and
+/// assigned the roles; it partitions the mesh and sends every other rank its
+/// part (owned vertices, one layer of ghosts). Each rank runs a
+/// Network_deformer on its part: it computes the stiffness of its elements,
+/// inserts its owned rows into the distributed matrix, gets its ghosts'
+/// solution back from their owners, checks its elements exactly, and agrees
+/// with the other ranks on the step's validity. Rank 0 gathers the positions
+/// to write them.
 template <int D>
 class Partitioned_run
 {
 public:
   using Point = std::array<double, D>;
 
-  Partitioned_run(MPI_Comm comm, const Spring_network<D>& whole, const std::vector<Vertex_role>& roles) : comm_(comm)
+  /// Rank 0: partitions the whole mesh (whose roles were checked), sends
+  /// every other rank its part and keeps its own. `vertex_number`: the file's
+  /// number of each network vertex, for the other ranks' error messages.
+  Partitioned_run(MPI_Comm comm, const Spring_network<D>& whole, const std::vector<Vertex_role>& roles,
+                  const std::vector<std::size_t>& vertex_number)
+      : comm_(comm)
   {
     int ranks;
     MPI_Comm_size(comm_, &ranks);
     MPI_Comm_rank(comm_, &rank_);
-    check_vertex_roles(whole, roles); // on the whole mesh: a part may have no moving vertex
-    part_ = internal::extract_part(whole, roles, internal::partition_vertices(whole, ranks), ranks, rank_);
-    rows_.vertex_row = part_.free_row.data();
-    rows_.first = part_.first_row;
-    rows_.owned = part_.owned_rows;
-    rows_.total = part_.total_rows;
     counts_.vertices = whole.number_of_vertices();
     counts_.elements = whole.number_of_elements();
     std::vector<char> used(whole.number_of_vertices(), 0);
@@ -55,6 +55,29 @@ public:
     for(Index v = 0; v < used.size(); ++v)
       if(used[v] && roles[v] != Vertex_role::free)
         ++(roles[v] == Vertex_role::moving ? counts_.moving_vertices : counts_.fixed_vertices);
+    const std::vector<int> owner = internal::partition_vertices(whole, ranks);
+    for(int r = 1; r < ranks; ++r) {
+      const std::vector<double> message = pack(internal::extract_part(whole, roles, owner, ranks, r), vertex_number);
+      unsigned long long size = message.size();
+      MPI_Send(&size, 1, MPI_UNSIGNED_LONG_LONG, r, 0, comm_);
+      MPI_Send(message.data(), int(message.size()), MPI_DOUBLE, r, 1, comm_);
+    }
+    part_ = internal::extract_part(whole, roles, owner, ranks, 0);
+    for(Index v : part_.global_vertex)
+      vertex_number_.push_back(vertex_number[v]);
+    set_rows();
+  }
+
+  /// Any other rank: receives its part from rank 0.
+  explicit Partitioned_run(MPI_Comm comm) : comm_(comm)
+  {
+    MPI_Comm_rank(comm_, &rank_);
+    unsigned long long size = 0;
+    MPI_Recv(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, 0, comm_, MPI_STATUS_IGNORE);
+    std::vector<double> message(size);
+    MPI_Recv(message.data(), int(size), MPI_DOUBLE, 0, 1, comm_, MPI_STATUS_IGNORE);
+    unpack(message);
+    set_rows();
   }
 
   int rank() const { return rank_; }
@@ -81,10 +104,11 @@ public:
     return all != 0;
   }
 
-  /// The positions of the whole mesh on rank 0 (elsewhere left empty):
-  /// every rank sends its owned vertices'; a vertex no element uses keeps
-  /// its initial point. Collective.
-  void gather(const Network_deformer<D>& deformer, const Spring_network<D>& whole, std::vector<Point>& positions) const
+  /// The positions of the whole mesh on rank 0, which gives the `whole`
+  /// network (elsewhere null, `positions` left as they are): every rank
+  /// sends its owned vertices'; a vertex no element uses keeps its initial
+  /// point. Collective.
+  void gather(const Network_deformer<D>& deformer, const Spring_network<D>* whole, std::vector<Point>& positions) const
   {
     std::vector<double> mine;
     for(std::size_t i = 0; i < part_.owned_vertices; ++i) {
@@ -95,7 +119,7 @@ public:
     const std::vector<double> all = gather_to_root(mine);
     if(rank_ != 0)
       return;
-    positions = whole.points;
+    positions = whole->points;
     for(std::size_t k = 0; k < all.size(); k += D + 1)
       for(int c = 0; c < D; ++c)
         positions[std::size_t(all[k])][std::size_t(c)] = all[k + 1 + std::size_t(c)];
@@ -158,9 +182,11 @@ public:
     }
   }
 
-  /// A library error of this rank's part, naming the vertex or element by
-  /// its whole-mesh number, as an error of the whole network would.
-  Error whole_mesh_error(const Error& e) const
+  /// Throws `e`, a library error of this rank's part, again as the whole
+  /// mesh names it: on rank 0 a vertex or element by its whole-network
+  /// index (which file_error then names as the file does); on the other
+  /// ranks, which hold no file, a vertex by the file's number.
+  [[noreturn]] void rethrow_for_whole_mesh(const Error& e) const
   {
     const auto renamed = [](std::string message, const std::string& noun, std::size_t from, std::size_t to) {
       const std::string old_name = noun + " " + std::to_string(from), new_name = noun + " " + std::to_string(to);
@@ -176,17 +202,92 @@ public:
     if(const auto* v = dynamic_cast<const Vertex_error*>(&e))
       if(v->vertex() < part_.global_vertex.size()) {
         const std::size_t g = part_.global_vertex[v->vertex()];
-        return Vertex_error(renamed(e.what(), "vertex", v->vertex(), g), g);
+        if(rank_ != 0)
+          throw Error(renamed(e.what(), "vertex", v->vertex(), vertex_number_[v->vertex()]));
+        throw Vertex_error(renamed(e.what(), "vertex", v->vertex(), g), g);
       }
     if(const auto* t = dynamic_cast<const Element_error*>(&e))
       if(t->element() < part_.global_element.size()) {
         const std::size_t g = part_.global_element[t->element()];
-        return Element_error(renamed(e.what(), "element", t->element(), g), g);
+        throw Element_error(renamed(e.what(), "element", t->element(), g), g);
       }
-    return e;
+    throw;
   }
 
 private:
+  void set_rows()
+  {
+    rows_.vertex_row = part_.free_row.data();
+    rows_.first = part_.first_row;
+    rows_.owned = part_.owned_rows;
+    rows_.total = part_.total_rows;
+  }
+
+  // A part as one message of doubles (every integer here is below 2^53):
+  // sizes and whole-mesh counts, then the part's arrays.
+  std::vector<double> pack(const internal::Mesh_part<D>& p, const std::vector<std::size_t>& vertex_number) const
+  {
+    const std::size_t nv = p.global_vertex.size(), ne = p.global_element.size();
+    std::vector<double> m{double(nv), double(ne), double(p.owned_vertices), double(p.first_row),
+                          double(p.owned_rows), double(p.total_rows), p.network.longest_initial_edge,
+                          double(counts_.vertices), double(counts_.elements), double(counts_.moving_vertices),
+                          double(counts_.fixed_vertices)};
+    m.reserve(m.size() + nv * (D + 4) + ne * (D + 3));
+    for(const auto& q : p.network.points)
+      m.insert(m.end(), q.begin(), q.end());
+    for(const auto& e : p.network.elements)
+      for(Index v : e)
+        m.push_back(double(v));
+    for(std::size_t i = 0; i < nv; ++i) {
+      m.push_back(double(int(p.roles[i])));
+      m.push_back(double(p.global_vertex[i]));
+      m.push_back(p.free_row[i] == p.no_row ? -1.0 : double(p.free_row[i]));
+      m.push_back(double(vertex_number[p.global_vertex[i]]));
+    }
+    for(std::size_t t = 0; t < ne; ++t) {
+      m.push_back(double(p.global_element[t]));
+      m.push_back(double(p.counted[t]));
+    }
+    return m;
+  }
+
+  void unpack(const std::vector<double>& m)
+  {
+    std::size_t k = 0;
+    const auto next = [&] { return m.at(k++); };
+    const std::size_t nv = std::size_t(next()), ne = std::size_t(next());
+    part_.owned_vertices = std::size_t(next());
+    part_.first_row = std::size_t(next());
+    part_.owned_rows = std::size_t(next());
+    part_.total_rows = std::size_t(next());
+    const double longest = next();
+    counts_.vertices = std::size_t(next());
+    counts_.elements = std::size_t(next());
+    counts_.moving_vertices = std::size_t(next());
+    counts_.fixed_vertices = std::size_t(next());
+    std::vector<std::array<double, D>> points(nv);
+    for(auto& q : points)
+      for(auto& c : q)
+        c = next();
+    std::vector<std::array<Index, D + 1>> elements(ne);
+    for(auto& e : elements)
+      for(auto& v : e)
+        v = Index(next());
+    for(std::size_t i = 0; i < nv; ++i) {
+      part_.roles.push_back(Vertex_role(int(next())));
+      part_.global_vertex.push_back(Index(next()));
+      const double row = next();
+      part_.free_row.push_back(row < 0 ? part_.no_row : std::size_t(row));
+      vertex_number_.push_back(std::size_t(next()));
+    }
+    for(std::size_t t = 0; t < ne; ++t) {
+      part_.global_element.push_back(std::size_t(next()));
+      part_.counted.push_back(char(next()));
+    }
+    part_.network = make_spring_network<D>(std::move(points), std::move(elements));
+    part_.network.longest_initial_edge = longest;
+  }
+
   // the concatenation of every rank's `mine` on rank 0 (empty elsewhere)
   std::vector<double> gather_to_root(const std::vector<double>& mine) const
   {
@@ -228,6 +329,7 @@ private:
   internal::Mesh_part<D> part_;
   internal::Petsc_rows rows_;
   Deform_report counts_; // the whole mesh's vertices, elements, moving and fixed vertices
+  std::vector<std::size_t> vertex_number_; // per local vertex: the file's number
 };
 
 } // namespace cli

@@ -38,6 +38,42 @@ public:
   Interrupted() : Error("interrupted: the run stopped and its outputs were removed") {}
 };
 
+/// What main() prints for the exception in flight (call inside a catch
+/// block) and the exit status it returns: one function, so that another MPI
+/// rank can print the very same line.
+struct Failure
+{
+  int status = 0;
+  std::string line;
+};
+Failure describe_failure(const std::string& command);
+
+/// An error that another MPI rank met and described (describe_failure): the
+/// rank 0 of a partitioned run before it scattered the mesh. Printed as it
+/// is, with its exit status.
+class Relayed_error : public Error
+{
+public:
+  Relayed_error(const Failure& f) : Error(f.line), status_(f.status) {}
+  int status() const noexcept { return status_; }
+
+private:
+  int status_;
+};
+
+/// An error every rank of an MPI run has already printed (before they
+/// finished together, so that mpiexec killed none before it had printed):
+/// main() prints nothing more and exits with its status.
+class Reported_error : public Error
+{
+public:
+  explicit Reported_error(int status) : Error(""), status_(status) {}
+  int status() const noexcept { return status_; }
+
+private:
+  int status_;
+};
+
 int deform_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err,
                    bool err_is_terminal);
 int check_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err);

@@ -29,9 +29,15 @@
 #include <optional>
 #include <ostream>
 #include <sstream>
+#include <type_traits>
 
 namespace spring_motion {
 namespace cli {
+
+#ifndef SPRING_MOTION_WITH_PETSC
+template <int D>
+class Partitioned_run; // only in a build with PETSc: a null pointer here
+#endif
 
 namespace {
 
@@ -306,67 +312,126 @@ private:
 #endif
 
 #ifdef SPRING_MOTION_WITH_PETSC
-// Within a catch block: prints the exception in flight as main() would,
-// then aborts every rank with main()'s exit status for it.
-template <int D>
-[[noreturn]] void abort_partitioned_run(const Mesh_setup<D>& setup, const Partitioned_run<D>& run, std::ostream& err)
+// Rank 0 of a partitioned run reads the mesh while the other ranks wait for
+// their parts. It first tells them whether it got that far: a header (status
+// 0 and the dimension, then a displacement motion's data) or the failure it
+// met (its exit status and the line main() prints), which every rank then
+// prints as its own. Set once the header went out.
+bool header_sent = false;
+
+void send_failure(const Failure& f)
 {
-  int status = exit_internal_error;
-  try {
-    throw;
-  } catch(const Interrupted& e) {
-    err << "spring-motion: " << e.what() << "\n";
-    status = exit_interrupted;
-  } catch(const Input_error& e) {
-    err << "spring-motion: " << e.what() << "\n";
-    status = exit_input_error;
-  } catch(const Error& e) {
-    err << "spring-motion: " << file_error(setup, run.whole_mesh_error(e)).what() << "\n";
-    status = exit_input_error;
-  } catch(const std::exception& e) {
-    err << "spring-motion: internal error: " << e.what() << "\n";
+  double header[2] = {double(f.status), 0};
+  MPI_Bcast(header, 2, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  int length = int(f.line.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  std::string line = f.line;
+  MPI_Bcast(line.data(), length, MPI_CHAR, 0, PETSC_COMM_WORLD);
+  header_sent = true;
+}
+
+// Rank 0: the header, then the motion's data a rank cannot make from the
+// command line (the displacements by point of a displacement file).
+template <int D, class Motion>
+void send_header(const Motion& motion)
+{
+  double header[2] = {0, double(D)};
+  MPI_Bcast(header, 2, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  header_sent = true;
+  if constexpr(std::is_same_v<Motion, Displacement_motion<D>>) {
+    std::vector<double> data;
+    for(const auto& [p, d] : motion.by_point) {
+      data.insert(data.end(), p.begin(), p.end());
+      data.insert(data.end(), d.begin(), d.end());
+    }
+    unsigned long long size = data.size();
+    MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, PETSC_COMM_WORLD);
+    MPI_Bcast(data.data(), int(size), MPI_DOUBLE, 0, PETSC_COMM_WORLD);
   }
+}
+
+template <int D>
+void receive_displacements(Displacement_motion<D>& motion)
+{
+  unsigned long long size = 0;
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, PETSC_COMM_WORLD);
+  std::vector<double> data(size);
+  MPI_Bcast(data.data(), int(size), MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  for(std::size_t k = 0; k + 2 * D <= data.size(); k += 2 * D) {
+    std::array<double, D> p, d;
+    std::copy(data.begin() + std::ptrdiff_t(k), data.begin() + std::ptrdiff_t(k + D), p.begin());
+    std::copy(data.begin() + std::ptrdiff_t(k + D), data.begin() + std::ptrdiff_t(k + 2 * D), d.begin());
+    motion.by_point.emplace(p, d);
+  }
+}
+
+// Within a catch block, on any rank of a partitioned run once the parts
+// are out: prints the exception in flight as main() would, naming a vertex
+// or element as the whole mesh (on rank 0: as the file) does, then aborts
+// every rank, which would otherwise wait in the next collective call.
+template <int D>
+[[noreturn]] void abort_partitioned_run(const Mesh_setup<D>* setup, const Partitioned_run<D>& run, std::ostream& err)
+{
+  Failure f;
+  try {
+    try {
+      throw;
+    } catch(const Input_error&) {
+      throw;
+    } catch(const Usage_error&) {
+      throw;
+    } catch(const Interrupted&) {
+      throw;
+    } catch(const Error& e) {
+      try {
+        run.rethrow_for_whole_mesh(e);
+      } catch(const Error& named) {
+        if(setup)
+          throw file_error(*setup, named);
+        throw;
+      }
+    }
+  } catch(...) {
+    f = describe_failure("deform");
+  }
+  err << f.line + "\n";
   err.flush();
-  MPI_Abort(PETSC_COMM_WORLD, status);
+  MPI_Abort(PETSC_COMM_WORLD, f.status);
   std::abort();
 }
 #endif
 
+// Runs the motion with `deformer` and writes what the command line asks
+// for. `setup` is the file's mesh (null on the ranks of a partitioned run
+// other than 0, which hold only their part); `partitioned` is the rank's
+// share of a run on PETSc (null on the shared backend).
 template <int D, class Motion>
-int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Vertex_role> roles, const Motion& motion,
-               std::ostream& out, std::ostream& err, bool err_is_terminal)
+int run_deformer(const Deform_settings& s, Mesh_setup<D>* setup, Network_deformer<D>& deformer,
+                 [[maybe_unused]] Partitioned_run<D>* partitioned, const Motion& motion, std::ostream& out,
+                 std::ostream& err, bool err_is_terminal)
 {
 #ifdef SPRING_MOTION_WITH_PETSC
   using Point = std::array<double, D>;
-  // the mesh partitioned over the ranks: each runs a deformer on its part
-  std::optional<Partitioned_run<D>> partitioned;
-  if(s.petsc)
-    partitioned.emplace(PETSC_COMM_WORLD, setup.network, roles);
-  Network_deformer<D> deformer =
-      partitioned ? Network_deformer<D>(partitioned->take_network(), partitioned->take_roles(), Role_checks::by_caller)
-                  : Network_deformer<D>(std::move(setup.network), std::move(roles));
-  // rank 0 keeps the whole network to write it; the others free it
+  // rank 0 keeps the whole network to write it
   std::vector<Point> whole_positions;
   Orientation_record whole_record;
   if(partitioned) {
     if(partitioned->rank() == 0)
-      whole_record = record_orientations(setup.network, setup.network.points);
-    else
-      setup.network = Spring_network<D>();
+      whole_record = record_orientations(setup->network, setup->network.points);
     deformer.solve_override = [&](const Step_system_view<D>& view, std::vector<Point>& x) {
       return partitioned->solve(view, x, petsc_rtol(s));
     };
     deformer.agree_on_validity = [&](bool valid) { return partitioned->agree(valid); };
   }
-#else
-  Network_deformer<D> deformer(std::move(setup.network), std::move(roles));
 #endif
   // the state to write: the deformer's, or the parts' gathered on rank 0 (collective)
   const auto state_now = [&]() -> Mesh_state<D> {
 #ifdef SPRING_MOTION_WITH_PETSC
     if(partitioned) {
-      partitioned->gather(deformer, setup.network, whole_positions);
-      return {setup.network, whole_positions, whole_record};
+      partitioned->gather(deformer, setup ? &setup->network : nullptr, whole_positions);
+      if(!setup) // a rank other than 0: nothing to write
+        return state_of(deformer);
+      return {setup->network, whole_positions, whole_record};
     }
 #endif
     return state_of(deformer);
@@ -382,7 +447,7 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
   context.add_frame = [&](std::size_t step) {
     const Mesh_state<D> state = state_now();
     for(auto& series : context.series)
-      series.add_frame(step, setup, state);
+      series.add_frame(step, *setup, state);
     context.last_frame = step;
   };
   Deform_report report;
@@ -423,7 +488,7 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
         it->finish();
         frames.push_back(it->frames());
       } else {
-        write_final_mesh(o, setup, final_state);
+        write_final_mesh(o, *setup, final_state);
         frames.push_back(0);
       }
     }
@@ -432,6 +497,14 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
       write_file_atomically(s.report_path, [&](std::ostream& f) { write_report_json(report, f); });
     }
     out << summary_line(report, s.outputs, s.report_path, frames) << "\n";
+#ifdef SPRING_MOTION_WITH_PETSC
+    // mpiexec ends every rank as soon as one exits with a non-zero status
+    // (3: an inverting step): no rank leaves before rank 0 has written its
+    // files and its summary line
+    out.flush();
+    if(partitioned)
+      MPI_Barrier(PETSC_COMM_WORLD);
+#endif
   } catch(...) {
     bar.clear();
     for(auto& series : context.series)
@@ -442,14 +515,79 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
 #ifdef SPRING_MOTION_WITH_PETSC
     // An error of one rank's part during the steps (a non-finite position,
     // a degenerate element's stiffness) is not seen by the other ranks,
-    // which wait in the next collective call: this rank reports it as the
-    // whole mesh numbers it, and ends every rank.
+    // which wait in the next collective call: this rank reports it and ends
+    // every rank.
     if(partitioned)
       abort_partitioned_run(setup, *partitioned, err);
 #endif
     throw;
   }
   return report.completed ? exit_success : exit_invalid;
+}
+
+// The file's mesh with its roles and motion: the shared backend runs it
+// whole; a partitioned run's rank 0 checks the roles on the whole mesh,
+// sends the other ranks their parts and runs its own.
+template <int D, class Motion>
+int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Vertex_role> roles, const Motion& motion,
+               std::ostream& out, std::ostream& err, bool err_is_terminal)
+{
+#ifdef SPRING_MOTION_WITH_PETSC
+  if(s.petsc) {
+    check_vertex_roles(setup.network, roles); // a part may have no moving vertex
+    send_header<D>(motion);
+    std::vector<std::size_t> numbers(setup.network.number_of_vertices());
+    for(Index v = 0; v < numbers.size(); ++v)
+      numbers[v] = setup.vertex_number(v);
+    Partitioned_run<D> partitioned(PETSC_COMM_WORLD, setup.network, roles, numbers);
+    Network_deformer<D> deformer(partitioned.take_network(), partitioned.take_roles(), Role_checks::by_caller);
+    return run_deformer<D>(s, &setup, deformer, &partitioned, motion, out, err, err_is_terminal);
+  }
+#endif
+  Network_deformer<D> deformer(std::move(setup.network), std::move(roles));
+  return run_deformer<D>(s, &setup, deformer, nullptr, motion, out, err, err_is_terminal);
+}
+
+// The command line's motion, with the checks that need the dimension (a
+// displacement motion's displacements are read with the mesh, run_deform).
+template <int D>
+struct Motions
+{
+  std::optional<Pitch_motion<D>> pitch;
+  std::optional<Translation_motion<D>> translation;
+  std::optional<Displacement_motion<D>> displacement;
+
+  template <class F>
+  int visit(F&& f) const
+  {
+    if(pitch)
+      return f(*pitch);
+    if(translation)
+      return f(*translation);
+    return f(*displacement);
+  }
+};
+
+template <int D>
+Motions<D> command_line_motion(const Deform_settings& s)
+{
+  Motions<D> m;
+  if(s.motion == Deform_settings::Motion_kind::pitch) {
+    m.pitch.emplace(s.pitch_deg, to_point<D>(s.center, "center"));
+    if(!s.axis.empty()) {
+      if constexpr(D == 2) {
+        if(s.axis[0] != 0 || s.axis[1] != 0 || s.axis[2] <= 0)
+          throw Usage_error("--axis: a 2D mesh turns about +z (counter-clockwise positive), expected no --axis or "
+                            "0,0,1; for a clockwise pitch give a negative angle");
+      } else
+        m.pitch->axis = {s.axis[0], s.axis[1], s.axis[2]};
+    }
+  } else if(s.motion == Deform_settings::Motion_kind::translate) {
+    m.translation.emplace();
+    m.translation->displacement = to_point<D>(s.translation, "translate");
+  } else
+    m.displacement.emplace();
+  return m;
 }
 
 template <int D>
@@ -467,30 +605,12 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
   }
   if(s.sliding)
     rules.sliding = resolve_labels(setup, "sliding", *s.sliding);
-  // The motions' checks that need the dimension.
-  std::optional<Pitch_motion<D>> pitch;
-  std::optional<Translation_motion<D>> translation;
-  std::optional<Displacement_motion<D>> displacement;
+  Motions<D> motion = command_line_motion<D>(s);
   std::vector<char> prescribed;
-  if(s.motion == Deform_settings::Motion_kind::pitch) {
-    pitch.emplace(s.pitch_deg, to_point<D>(s.center, "center"));
-    if(!s.axis.empty()) {
-      if constexpr(D == 2) {
-        if(s.axis[0] != 0 || s.axis[1] != 0 || s.axis[2] <= 0)
-          throw Usage_error("--axis: a 2D mesh turns about +z (counter-clockwise positive), expected no --axis or "
-                            "0,0,1; for a clockwise pitch give a negative angle");
-      } else
-        pitch->axis = {s.axis[0], s.axis[1], s.axis[2]};
-    }
-  } else if(s.motion == Deform_settings::Motion_kind::translate) {
-    translation.emplace();
-    translation->displacement = to_point<D>(s.translation, "translate");
-  }
   // Roles before reading a displacement file, which must then cover the moving set.
   auto roles = assign_command_line_roles(setup, rules, prescribed);
   if(s.motion == Deform_settings::Motion_kind::displacement) {
     const auto df = read_displacement_file<D>(s.displacement_path, file.vertex_ids);
-    displacement.emplace();
     prescribed.assign(setup.network.number_of_vertices(), 0);
     for(std::size_t k = 0; k < df.vertices.size(); ++k) {
       const std::string id = std::to_string(file.vertex_ids[df.vertices[k]]);
@@ -502,7 +622,7 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
         throw Input_error(df.path, df.lines[k], "vertex " + id + " is not on a moving boundary part (--moving " +
                                                     *s.moving + "): expected moving vertices only");
       const auto& p = setup.network.points[v];
-      const auto [it, inserted] = displacement->by_point.emplace(p, df.displacements[k]);
+      const auto [it, inserted] = motion.displacement->by_point.emplace(p, df.displacements[k]);
       if(!inserted && it->second != df.displacements[k])
         throw Input_error(df.path, df.lines[k], "vertex " + id + " lies at the same point as another listed vertex "
                                                     "with a different displacement: expected one displacement per point");
@@ -517,11 +637,9 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
       roles = assign_command_line_roles(setup, rules, prescribed);
   }
   try { // the library checks the roles (Network_deformer) and the input mesh once more
-    if(pitch)
-      return run_motion<D>(s, setup, std::move(roles), *pitch, out, err, err_is_terminal);
-    if(translation)
-      return run_motion<D>(s, setup, std::move(roles), *translation, out, err, err_is_terminal);
-    return run_motion<D>(s, setup, std::move(roles), *displacement, out, err, err_is_terminal);
+    return motion.visit([&](const auto& m) {
+      return run_motion<D>(s, setup, std::move(roles), m, out, err, err_is_terminal);
+    });
   } catch(const Input_error&) {
     throw; // already names its file (an Input_error is an Error too)
   } catch(const Usage_error&) {
@@ -534,6 +652,39 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
     throw file_error(setup, e);
   }
 }
+
+#ifdef SPRING_MOTION_WITH_PETSC
+// A rank other than 0 of a partitioned run: it reads no file. It waits for
+// rank 0's header (or the failure rank 0 met, printed here too), makes the
+// motion from the same command line, receives its part and runs it.
+template <int D>
+int run_received_part(const Deform_settings& s, std::ostream& out, std::ostream& err)
+{
+  Motions<D> motion = command_line_motion<D>(s);
+  if(motion.displacement)
+    receive_displacements(*motion.displacement);
+  Partitioned_run<D> partitioned(PETSC_COMM_WORLD);
+  Network_deformer<D> deformer(partitioned.take_network(), partitioned.take_roles(), Role_checks::by_caller);
+  return motion.visit([&](const auto& m) {
+    return run_deformer<D>(s, nullptr, deformer, &partitioned, m, out, err, false);
+  });
+}
+
+int receive_part(const Deform_settings& s, std::ostream& out, std::ostream& err)
+{
+  double header[2];
+  MPI_Bcast(header, 2, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  if(header[0] != 0) {
+    int length = 0;
+    MPI_Bcast(&length, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+    std::string line(std::size_t(length), ' ');
+    MPI_Bcast(line.data(), length, MPI_CHAR, 0, PETSC_COMM_WORLD);
+    throw Relayed_error({int(header[0]), line});
+  }
+  install_interrupt_handlers();
+  return header[1] == 2 ? run_received_part<2>(s, out, err) : run_received_part<3>(s, out, err);
+}
+#endif
 
 } // namespace
 
@@ -548,26 +699,42 @@ int deform_command(const std::vector<std::string>& arguments, std::ostream& out,
   Deform_settings s = parse_deform(a);
 #ifdef SPRING_MOTION_WITH_PETSC
   const Petsc_session petsc(s.petsc);
-  std::ostringstream elsewhere;
-  if(petsc.rank() != 0) { // one rank writes and prints; every rank reports its errors
-    s.outputs.clear();
-    s.report_path.clear();
-    s.quiet = true;
-    s.force_progress = false;
-  }
-  std::ostream& out_here = petsc.rank() == 0 ? out : elsewhere;
-#else
-  std::ostream& out_here = out;
+  try {
+    if(petsc.rank() != 0) { // rank 0 reads, writes and prints; every rank reports its errors
+      s.outputs.clear();
+      s.report_path.clear();
+      s.quiet = true;
+      s.force_progress = false;
+      std::ostringstream elsewhere;
+      return receive_part(s, elsewhere, err);
+    }
 #endif
-  std::vector<std::string> inputs{s.mesh_path};
-  if(!s.displacement_path.empty())
-    inputs.push_back(s.displacement_path);
-  check_outputs(inputs, s.outputs, s.report_path);
-  const Mesh_file file = read_mesh(s.mesh_path);
-  install_interrupt_handlers(); // from here on outputs may exist: Ctrl-C removes them
-  if(file.dimension == 2)
-    return run_deform<2>(s, file, out_here, err, err_is_terminal);
-  return run_deform<3>(s, file, out_here, err, err_is_terminal);
+    std::vector<std::string> inputs{s.mesh_path};
+    if(!s.displacement_path.empty())
+      inputs.push_back(s.displacement_path);
+    check_outputs(inputs, s.outputs, s.report_path);
+    const Mesh_file file = read_mesh(s.mesh_path);
+    install_interrupt_handlers(); // from here on outputs may exist: Ctrl-C removes them
+    if(file.dimension == 2)
+      return run_deform<2>(s, file, out, err, err_is_terminal);
+    return run_deform<3>(s, file, out, err, err_is_terminal);
+#ifdef SPRING_MOTION_WITH_PETSC
+  } catch(...) {
+    if(!s.petsc)
+      throw;
+    // Rank 0 failed before the parts went out (a bad file, label or role):
+    // the other ranks, waiting for their parts, print the same line. Every
+    // rank prints before any leaves: mpiexec ends them all when the first
+    // exits with a non-zero status.
+    const Failure f = describe_failure("deform");
+    if(petsc.rank() == 0 && petsc.ranks() > 1 && !header_sent)
+      send_failure(f);
+    err << f.line + "\n";
+    err.flush();
+    MPI_Barrier(PETSC_COMM_WORLD);
+    throw Reported_error(f.status);
+  }
+#endif
 }
 
 } // namespace cli

@@ -32,6 +32,30 @@ void install_interrupt_handlers()
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
 }
+
+Failure describe_failure(const std::string& command)
+{
+  try {
+    throw;
+  } catch(const Reported_error& e) {
+    return {e.status(), ""};
+  } catch(const Relayed_error& e) {
+    return {e.status(), e.what()};
+  } catch(const Interrupted& e) {
+    return {exit_interrupted, std::string("spring-motion: ") + e.what()};
+  } catch(const Usage_error& e) {
+    return {exit_usage_error, "spring-motion " + command + ": " + e.what() + " (see 'spring-motion " + command +
+                                  " --help')"};
+  } catch(const spring_motion::Input_error& e) {
+    return {exit_input_error, std::string("spring-motion: ") + e.what()};
+  } catch(const spring_motion::Error& e) {
+    return {exit_input_error, "spring-motion: " + without_source_location(e.what())};
+  } catch(const std::bad_alloc&) {
+    return {exit_internal_error, "spring-motion: out of memory"};
+  } catch(const std::exception& e) {
+    return {exit_internal_error, std::string("spring-motion: internal error: ") + e.what()};
+  }
+}
 } // namespace cli
 } // namespace spring_motion
 
@@ -60,24 +84,10 @@ int main(int argc, char** argv)
     std::cerr << "spring-motion: unknown command '" << command
               << "': expected deform, check or convert (see 'spring-motion --help')\n";
     return exit_usage_error;
-  } catch(const Interrupted& e) {
-    std::cerr << "spring-motion: " << e.what() << "\n";
-    return exit_interrupted;
-  } catch(const Usage_error& e) {
-    std::cerr << "spring-motion " << command << ": " << e.what() << " (see 'spring-motion " << command
-              << " --help')\n";
-    return exit_usage_error;
-  } catch(const spring_motion::Input_error& e) {
-    std::cerr << "spring-motion: " << e.what() << "\n";
-    return exit_input_error;
-  } catch(const spring_motion::Error& e) {
-    std::cerr << "spring-motion: " << without_source_location(e.what()) << "\n";
-    return exit_input_error;
-  } catch(const std::bad_alloc&) {
-    std::cerr << "spring-motion: out of memory\n";
-    return exit_internal_error;
-  } catch(const std::exception& e) {
-    std::cerr << "spring-motion: internal error: " << e.what() << "\n";
-    return exit_internal_error;
+  } catch(...) {
+    const Failure f = describe_failure(command);
+    if(!f.line.empty()) // one write: the ranks of an MPI run print to one stream at once
+      std::cerr << f.line + "\n";
+    return f.status;
   }
 }

@@ -6,8 +6,9 @@
 # shared backend (1 thread, then the default) and with --backend petsc on 1
 # and 2 MPI ranks (one thread each). Prints wall time (whole process), the
 # stiffness and solve times and the solver iterations from each run's report
-# (rank 0's part on PETSc), the run's peak memory, and the final state's
-# worst R and smallest dihedral angle (which must agree between the runs). With BOX_N, the same
+# (rank 0's part on PETSc), the run's peak memory (its largest process) and
+# on PETSc each rank's, and the final state's worst R and smallest dihedral
+# angle (which must agree between the runs). With BOX_N, the same
 # four runs on the structured box with a hole of scripts/make_box_mesh.py
 # (BOX_N = 100: about a million vertices), 2 steps to 1 degree.
 #   bench/petsc_scaling.sh BUILD_PETSC [STEPS [BOX_N]]     (BUILD_PETSC: a build with SPRING_MOTION_WITH_PETSC=ON)
@@ -24,7 +25,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 args=(deform "$mesh" --moving wing --pitch 10 --center 0.5,0,0 --axis 0,0,1 --steps "$steps" --quiet)
 echo "uptime before: $(uptime)"
-printf '%-28s %8s %11s %8s %11s %9s %8s %8s\n' "run" "wall s" "stiffness s" "solve s" "iterations" "peak MiB" "worst R" "min deg"
+printf '%-28s %8s %11s %8s %11s %9s %8s %8s %s\n' "run" "wall s" "stiffness s" "solve s" "iterations" "peak MiB" "worst R" "min deg" "MiB per rank"
 # peak MiB: the largest resident set of the run's processes (getrusage of
 # the children: under mpiexec, the largest rank)
 run() {
@@ -41,8 +42,10 @@ stiffness = sum(s["seconds"]["stiffness"] for s in r["steps"])
 solve = sum(s["seconds"]["solve"] for s in r["steps"])
 its = sum(s["iterations"] for s in r["steps"])
 q = r["quality"]  # the final state: the largest R and the smallest dihedral angle over all tetrahedra
-print("%-28s %8.2f %11.2f %8.2f %11d %9.0f %8.4f %8.3f"
-      % (name, wall, stiffness, solve, its, peak, q["all"]["max"], q["all"]["min_angle_deg"]))
+ranks = r["backend"].get("peak_mib_per_rank", [])
+print("%-28s %8.2f %11.2f %8.2f %11d %9.0f %8.4f %8.3f %s"
+      % (name, wall, stiffness, solve, its, peak, q["all"]["max"], q["all"]["min_angle_deg"],
+         " ".join("%.0f" % m for m in ranks)))
 PY
 }
 four_runs() {

@@ -116,6 +116,8 @@ void write_report_json(const Deform_report& r, std::ostream& out)
   if(!r.rank_seconds_solve.empty()) {
     j["backend"]["seconds_solve_per_rank"] = numbers(r.rank_seconds_solve);
     j["backend"]["seconds_total_per_rank"] = numbers(r.rank_seconds_total);
+    if(!r.rank_peak_mib.empty())
+      j["backend"]["peak_mib_per_rank"] = numbers(r.rank_peak_mib);
   }
   j["mesh"] = Json{{"dimension", r.dimension},
                    {"vertices", r.vertices},

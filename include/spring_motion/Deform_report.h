@@ -71,6 +71,9 @@ struct Deform_report
   /// per MPI rank (petsc backend): the seconds its solves took (summed over
   /// the steps, waiting in PETSc's collectives included) and its whole run
   std::vector<double> rank_seconds_solve, rank_seconds_total;
+  /// per MPI rank (petsc backend): its peak resident memory in MiB at the
+  /// end of the run (rank 0 holds the whole mesh, the others their parts)
+  std::vector<double> rank_peak_mib;
   Model_description model;
   Motion_description motion;
   std::size_t number_of_steps = 0;

@@ -17,6 +17,8 @@
 #include <spring_motion/stiffness/model_by_name.h>
 #ifdef SPRING_MOTION_WITH_PETSC
 #include "Partitioned_run.h"
+
+#include <sys/resource.h>
 #endif
 
 #include <algorithm>
@@ -463,14 +465,17 @@ int run_deformer(const Deform_settings& s, Mesh_setup<D>* setup, Network_deforme
     if(partitioned) {
       partitioned->reduce(report, deformer, s.options.solver.threads);
       MPI_Comm_size(PETSC_COMM_WORLD, &report.ranks);
-      double mine[2] = {0, report.seconds_total};
+      rusage usage{};
+      getrusage(RUSAGE_SELF, &usage); // ru_maxrss in KiB on Linux
+      double mine[3] = {0, report.seconds_total, double(usage.ru_maxrss) / 1024};
       for(const auto& step : report.steps)
         mine[0] += step.seconds_solve;
-      std::vector<double> all(2 * std::size_t(report.ranks));
-      MPI_Gather(mine, 2, MPI_DOUBLE, all.data(), 2, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+      std::vector<double> all(3 * std::size_t(report.ranks));
+      MPI_Gather(mine, 3, MPI_DOUBLE, all.data(), 3, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
       for(int r = 0; r < report.ranks; ++r) {
-        report.rank_seconds_solve.push_back(all[2 * std::size_t(r)]);
-        report.rank_seconds_total.push_back(all[2 * std::size_t(r) + 1]);
+        report.rank_seconds_solve.push_back(all[3 * std::size_t(r)]);
+        report.rank_seconds_total.push_back(all[3 * std::size_t(r) + 1]);
+        report.rank_peak_mib.push_back(all[3 * std::size_t(r) + 2]);
       }
     }
 #endif

@@ -50,7 +50,8 @@ def main():
             sys.exit("expected one summary line from rank 0 only, got:\n" + o1)
         b = r1["backend"]
         if b["name"] != "petsc" or b["ranks"] != ranks or len(b["seconds_solve_per_rank"]) != ranks \
-                or len(b["seconds_total_per_rank"]) != ranks \
+                or len(b["seconds_total_per_rank"]) != ranks or len(b["peak_mib_per_rank"]) != ranks \
+                or not all(m > 0 for m in b["peak_mib_per_rank"]) \
                 or not all(0 <= t <= u for t, u in zip(b["seconds_solve_per_rank"], b["seconds_total_per_rank"])):
             sys.exit("report backend %r" % b)
         for k in ("completed",):

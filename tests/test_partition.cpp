@@ -176,3 +176,30 @@ TEST_CASE("partition: more parts than vertices leaves parts without vertices, ea
   std::sort(sorted.begin(), sorted.end());
   CHECK(std::unique(sorted.begin(), sorted.end()) == sorted.end());
 }
+
+TEST_CASE("partition: a step is accepted only when every part agrees", "[partition]")
+{
+  // the part's own check passes (a small rotation), but another part's
+  // verdict is "invalid": the step must be rejected and the state kept
+  const auto [net, roles] = spring_motion_test::naca0012_network();
+  Network_deformer<2> d(net, roles);
+  std::vector<bool> verdicts;
+  d.agree_on_validity = [&](bool valid) {
+    verdicts.push_back(valid);
+    return false;
+  };
+  Deform_options options;
+  options.number_of_steps = 2;
+  options.max_substep_halvings = 1;
+  const auto r = d.run(Pitch_motion<2>(2, {0.25, 0}), Grid_scaled_stiffness{}, options);
+  CHECK_FALSE(r.completed);
+  REQUIRE(r.first_invalid.has_value());
+  CHECK(r.first_invalid->step == 1);
+  CHECK(r.first_invalid->elements.empty()); // none inverted here
+  CHECK(d.fraction() == 0);
+  CHECK(d.positions() == net.points);
+  // asked once for the whole step and once for each of its two substeps' first
+  REQUIRE(verdicts.size() == 2);
+  CHECK(verdicts[0]);
+  CHECK(verdicts[1]);
+}

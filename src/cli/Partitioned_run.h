@@ -185,7 +185,8 @@ public:
   /// Throws `e`, a library error of this rank's part, again as the whole
   /// mesh names it: on rank 0 a vertex or element by its whole-network
   /// index (which file_error then names as the file does); on the other
-  /// ranks, which hold no file, a vertex by the file's number.
+  /// ranks, which hold no file, a vertex by the file's number. Called in the
+  /// catch block of `e`, which any other error rethrows as it is.
   [[noreturn]] void rethrow_for_whole_mesh(const Error& e) const
   {
     const auto renamed = [](std::string message, const std::string& noun, std::size_t from, std::size_t to) {

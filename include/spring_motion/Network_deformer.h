@@ -51,10 +51,7 @@ void check_vertex_roles(const Spring_network<D>& net, const std::vector<Vertex_r
 {
   const std::size_t n = net.number_of_vertices();
   SPRING_MOTION_CHECK(roles.size() == n, "got " << roles.size() << " vertex roles for " << n << " vertices");
-  std::vector<char> used(n, 0);
-  for(const auto& e : net.elements)
-    for(Index v : e)
-      used[v] = 1;
+  const std::vector<char> used = used_vertices(net);
   bool moving = false;
   for(Index i = 0; i < n && !moving; ++i)
     moving = used[i] && roles[i] == Vertex_role::moving;
@@ -80,10 +77,7 @@ public:
     SPRING_MOTION_CHECK(roles_.size() == n, "got " << roles_.size() << " vertex roles for " << n << " vertices");
     positions_ = net_.points;
     record_ = record_orientations(net_, positions_);
-    std::vector<char> used(n, 0);
-    for(const auto& e : net_.elements)
-      for(Index v : e)
-        used[v] = 1;
+    const std::vector<char> used = used_vertices(net_);
     sliding_ = internal::sliding_set(net_, roles_);
     std::vector<char> pinned(n, 0);
     for(Index i : sliding_.pinned)

@@ -75,6 +75,18 @@ struct Labeled_facet
   int label;
 };
 
+/// Per vertex, 1 if some element uses it: a vertex no element uses takes no
+/// part in the motion.
+template <int D>
+std::vector<char> used_vertices(const Spring_network<D>& net)
+{
+  std::vector<char> used(net.number_of_vertices(), 0);
+  for(const auto& e : net.elements)
+    for(Index v : e)
+      used[v] = 1;
+  return used;
+}
+
 /// Builds the network from points and elements. Throws `Error` on
 /// non-finite coordinates, vertex indices out of range, repeated vertices in
 /// an element, an empty mesh, and labeled facets that are not boundary facets.

@@ -135,10 +135,8 @@ template <int D>
 std::vector<Index> undetermined_vertices(const Spring_network<D>& net, const std::vector<Vertex_role>& roles)
 {
   const std::size_t n = net.number_of_vertices();
-  std::vector<char> used(n, 0), reached(n, 0);
-  for(const auto& e : net.elements)
-    for(Index v : e)
-      used[v] = 1;
+  const std::vector<char> used = used_vertices(net);
+  std::vector<char> reached(n, 0);
   std::deque<Index> queue;
   for(Index i = 0; i < n; ++i)
     if(used[i] && (roles[i] == Vertex_role::moving || roles[i] == Vertex_role::fixed)) {

@@ -48,10 +48,7 @@ public:
     MPI_Comm_rank(comm_, &rank_);
     counts_.vertices = whole.number_of_vertices();
     counts_.elements = whole.number_of_elements();
-    std::vector<char> used(whole.number_of_vertices(), 0);
-    for(const auto& e : whole.elements)
-      for(Index v : e)
-        used[v] = 1;
+    const std::vector<char> used = used_vertices(whole);
     for(Index v = 0; v < used.size(); ++v)
       if(used[v] && roles[v] != Vertex_role::free)
         ++(roles[v] == Vertex_role::moving ? counts_.moving_vertices : counts_.fixed_vertices);

@@ -28,10 +28,7 @@ std::vector<int> partition_vertices(const Spring_network<D>& net, int parts)
 {
   SPRING_MOTION_CHECK(parts > 0, "partition_vertices: expected a positive number of parts, got " << parts);
   std::vector<int> owner(net.number_of_vertices(), 0);
-  std::vector<char> used(net.number_of_vertices(), 0);
-  for(const auto& e : net.elements)
-    for(Index v : e)
-      used[v] = 1;
+  const std::vector<char> used = used_vertices(net);
   std::vector<Index> ids;
   for(Index v = 0; v < used.size(); ++v)
     if(used[v])
@@ -110,10 +107,7 @@ Mesh_part<D> extract_part(const Spring_network<D>& net, const std::vector<Vertex
 {
   const std::size_t n = net.number_of_vertices();
   SPRING_MOTION_CHECK(roles.size() == n && owner.size() == n, "extract_part: one role and owner per vertex expected");
-  std::vector<char> used(n, 0);
-  for(const auto& e : net.elements)
-    for(Index v : e)
-      used[v] = 1;
+  const std::vector<char> used = used_vertices(net);
   Mesh_part<D> p;
   // the whole free system's rows: part after part, by vertex number within a part
   std::vector<std::size_t> rows_of(std::size_t(parts) + 1, 0), row(n, Mesh_part<D>::no_row);

@@ -87,24 +87,27 @@ void check_parts(const Spring_network<D>& net, const std::vector<Vertex_role>& r
   Network_deformer<D> whole(net, roles);
   const auto expected = first_system<D>(whole, motion, model, {}, net.number_of_vertices());
   REQUIRE(!expected.empty());
+  // the parts' deformers get the planes of the sliding parts fitted on the whole mesh
+  const std::vector<Boundary_plane<D>> planes = sliding_planes(net, roles);
 
   std::map<Index, Row<D>> got;
   std::vector<int> counted(net.number_of_elements(), 0);
   std::vector<std::size_t> rows_seen;
   for(int p = 0; p < parts; ++p) {
-    internal::Mesh_part<D> part = internal::extract_part(net, roles, owner, parts, p);
+    internal::Mesh_part<D> part = internal::extract_part(net, roles, planes, owner, parts, p);
     for(std::size_t t = 0; t < part.global_element.size(); ++t)
       counted[part.global_element[t]] += part.counted[t];
     for(std::size_t i = 0; i < part.global_vertex.size(); ++i) {
       const std::size_t row = part.free_row[i];
-      CHECK((row == part.no_row) == (roles[part.global_vertex[i]] != Vertex_role::free));
+      // a row for the vertices the whole mesh's system has
+      CHECK((row == part.no_row) == (expected.count(part.global_vertex[i]) == 0));
       if(i < part.owned_vertices && row != part.no_row) {
         CHECK(row >= part.first_row);
         CHECK(row < part.first_row + part.owned_rows);
         rows_seen.push_back(row);
       }
     }
-    Network_deformer<D> d(std::move(part.network), part.roles, Role_checks::by_caller);
+    Network_deformer<D> d(std::move(part.network), part.roles, planes, Role_checks::by_caller);
     for(auto& [v, row] : first_system<D>(d, motion, model, part.global_vertex, part.owned_vertices))
       got[v] = std::move(row);
   }
@@ -155,6 +158,81 @@ TEST_CASE("partition: each part's owned rows are the whole system's, 3D block of
       check_parts<3>(net, roles, Translation_motion<3>{{0.3, 0.2, -0.4}}, model, parts);
 }
 
+// A Kuhn grid [0,m]^D whose faces x_a = 0 (a in `sliding`) slide, label
+// a + 1, the face x_{D-1} = m moving (label 10), the others fixed (11).
+template <int D>
+std::pair<Spring_network<D>, std::vector<Vertex_role>> sliding_grid(int m, const std::vector<int>& sliding)
+{
+  const auto grid = spring_motion_test::kuhn_grid<D>(m);
+  const auto plain = make_spring_network<D>(grid.points, grid.elements);
+  std::vector<Labeled_facet<D>> facets;
+  for(const auto& f : plain.boundary_facets) {
+    int label = 11;
+    for(int a = 0; a < D; ++a) {
+      const bool all_zero = std::all_of(f.begin(), f.end(), [&](Index v) { return grid.points[v][a] == 0; });
+      const bool all_top = std::all_of(f.begin(), f.end(), [&](Index v) { return grid.points[v][a] == m; });
+      if(all_zero && std::find(sliding.begin(), sliding.end(), a) != sliding.end())
+        label = a + 1;
+      if(all_top && a == D - 1)
+        label = 10;
+    }
+    facets.push_back({f, label});
+  }
+  auto net = make_spring_network<D>(grid.points, grid.elements, facets);
+  Boundary_label_roles rules;
+  rules.moving = {10};
+  for(int a : sliding)
+    rules.sliding.push_back(a + 1);
+  auto roles = assign_roles(net, rules);
+  return {std::move(net), std::move(roles)};
+}
+
+TEST_CASE("partition: with sliding vertices, each part's owned rows are the whole system's", "[partition]")
+{
+  // sliding vertices' rows are projected (P A P + s (I - P)): a part's rows
+  // need its ghosts' planes too, which it gets fitted on the whole mesh
+  {
+    const auto [net, roles] = sliding_grid<2>(8, {0, 1});
+    CHECK(std::count(roles.begin(), roles.end(), Vertex_role::sliding) == 8 + 7);
+    for(const std::string model : {"grid_scaled", "ball_vertex"})
+      for(int parts : {3, 7})
+        check_parts<2>(net, roles, Translation_motion<2>{{0.3, -0.2}}, model, parts);
+  }
+  {
+    // three planes: vertices on two slide along their line, the corner is pinned
+    const auto [net, roles] = sliding_grid<3>(4, {0, 1, 2});
+    CHECK(std::count(roles.begin(), roles.end(), Vertex_role::sliding) == 3 * 3 * 3 + 3 * 3 + 1);
+    for(const std::string model : {"grid_scaled", "ball_vertex"})
+      for(int parts : {2, 5})
+        check_parts<3>(net, roles, Translation_motion<3>{{0.3, 0.2, -0.4}}, model, parts);
+  }
+}
+
+TEST_CASE("partition: a part may hold too few of a plane's vertices to fit it, the whole mesh's planes serve it",
+          "[partition]")
+{
+  // a part that owns one vertex next to the planes: its ghosts on a plane
+  // may lie on a line, which spans no plane
+  const auto [net, roles] = sliding_grid<3>(3, {0, 1, 2});
+  const std::vector<Boundary_plane<3>> planes = sliding_planes(net, roles);
+  REQUIRE(planes.size() == 3);
+  std::size_t found = 0;
+  for(Index v = 0; v < net.number_of_vertices(); ++v) {
+    std::vector<int> owner(net.number_of_vertices(), 0);
+    owner[v] = 1;
+    const auto part = internal::extract_part(net, roles, planes, owner, 2, 1);
+    try {
+      Network_deformer<3>(part.network, part.roles, Role_checks::by_caller);
+    } catch(const Error& e) {
+      INFO("vertex " << v << ": " << e.what());
+      CHECK_THAT(e.what(), Catch::Contains("spans no plane") || Catch::Contains("too few to span a plane"));
+      CHECK_NOTHROW(Network_deformer<3>(part.network, part.roles, planes, Role_checks::by_caller));
+      ++found;
+    }
+  }
+  CHECK(found > 0);
+}
+
 TEST_CASE("partition: more parts than vertices leaves parts without vertices, each still a valid network",
           "[partition]")
 {
@@ -162,7 +240,7 @@ TEST_CASE("partition: more parts than vertices leaves parts without vertices, ea
   const std::vector<Vertex_role> roles(4, Vertex_role::moving);
   const std::vector<int> owner = internal::partition_vertices(net, 6);
   for(int p = 0; p < 6; ++p) {
-    const auto part = internal::extract_part(net, roles, owner, 6, p);
+    const auto part = internal::extract_part(net, roles, {}, owner, 6, p);
     const std::size_t owned = std::size_t(std::count(owner.begin(), owner.end(), p));
     CHECK(part.owned_vertices == owned);
     CHECK(part.network.number_of_elements() >= 1);

@@ -298,12 +298,12 @@ TEST_CASE("sliding: the label rules", "[sliding]")
 TEST_CASE("sliding: the plane of a part, axis-aligned exactly or not at all", "[sliding]")
 {
   auto net = labelled_network<2>(box_mesh<2>({1}), {1});
-  const auto plane = internal::fit_part_plane(net, plane_label(1));
+  const auto plane = fit_boundary_plane(net, plane_label(1));
   CHECK(plane.axis == 1);
   CHECK(plane.normal[0] == 0.0);
   CHECK(std::abs(plane.normal[1]) == 1.0);
   // the outer boundary is three sides of a rectangle, not a line
-  CHECK_THROWS_WITH(internal::fit_part_plane(net, outer_label), Catch::Contains("is not planar"));
+  CHECK_THROWS_WITH(fit_boundary_plane(net, outer_label), Catch::Contains("is not planar"));
 }
 
 TEST_CASE("sliding: a cut 2D mesh with its symmetry line sliding moves as half of the whole one", "[sliding]")
@@ -409,6 +409,62 @@ TEST_CASE("sliding: a plane that is no axis: the vertices stay on it and the mot
   }
   CHECK(off < 1e-15);
   CHECK(diff < 1e-10);
+}
+
+TEST_CASE("sliding: planes given instead of fitted", "[sliding]")
+{
+  CHECK(boundary_plane<2>(5, {0, -2}).axis == 1);
+  CHECK(boundary_plane<2>(5, {0, -2}).normal == Point<2>{0, 1});
+  CHECK_THROWS_WITH(boundary_plane<2>(5, {0, 0}), Catch::Contains("part 5 needs a finite non-zero normal"));
+  CHECK_THROWS_WITH(boundary_plane<3>(5, {0, NAN, 1}), Catch::Contains("part 5 needs a finite non-zero normal"));
+
+  auto m = box_mesh<2>({1});
+  Boundary_label_roles rules;
+  rules.moving = {hole_label};
+  rules.sliding = {plane_label(1)};
+  Deform_options options;
+  options.number_of_steps = 4;
+  options.solver.tolerance = 1e-15;
+  const Point<2> shift{0.3, 0.2};
+  {
+    // the cut line y = 0 given as the line x = 0: the vertices keep their x
+    // (the given plane is used, not the fitted one) and move along y
+    auto net = labelled_network<2>(m, {1});
+    const auto roles = assign_roles(net, rules);
+    Network_deformer<2> d(net, roles, {boundary_plane<2>(plane_label(1), {1, 0})});
+    REQUIRE(d.run(Translation_motion<2>{shift}, Grid_scaled_stiffness{}, options).completed);
+    REQUIRE(d.number_of_sliding_vertices() > 0);
+    double moved = 0;
+    for(Index i = 0; i < net.number_of_vertices(); ++i)
+      if(roles[i] == Vertex_role::sliding) {
+        CHECK(d.positions()[i][0] == net.points[i][0]);
+        moved = std::max(moved, std::abs(d.positions()[i][1] - net.points[i][1]));
+      }
+    CHECK(moved > 0.01);
+  }
+  {
+    // a plane that is no axis, given with a normal of length 3: the same
+    // motion as with the fitted plane, the vertices on it
+    const double a = 30 * M_PI / 180, c = std::cos(a), s = std::sin(a);
+    for(auto& p : m.points)
+      p = Point<2>{c * p[0] - s * p[1], s * p[0] + c * p[1]};
+    auto net = make_spring_network<2>(m.points, m.elements, labelled_facets<2>(box_mesh<2>({1}), {1}));
+    const auto roles = assign_roles(net, rules);
+    Network_deformer<2> fitted(net, roles);
+    Network_deformer<2> given(net, roles, {boundary_plane<2>(plane_label(1), {-3 * s, 3 * c})});
+    REQUIRE(fitted.run(Translation_motion<2>{shift}, Grid_scaled_stiffness{}, options).completed);
+    REQUIRE(given.run(Translation_motion<2>{shift}, Grid_scaled_stiffness{}, options).completed);
+    double off = 0, diff = 0;
+    for(Index i = 0; i < net.number_of_vertices(); ++i) {
+      for(int k = 0; k < 2; ++k)
+        diff = std::max(diff, std::abs(given.positions()[i][k] - fitted.positions()[i][k]));
+      if(roles[i] == Vertex_role::sliding)
+        off = std::max(off, std::abs(-s * (given.positions()[i][0] - m.points[i][0]) +
+                                     c * (given.positions()[i][1] - m.points[i][1])));
+    }
+    CHECK(off < 1e-15);
+    CHECK(diff < 1e-12);
+  }
 }
 
 TEST_CASE("sliding: a sliding part that is not planar is refused, naming it", "[sliding]")

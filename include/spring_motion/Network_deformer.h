@@ -2,6 +2,7 @@
 #ifndef SPRING_MOTION_NETWORK_DEFORMER_H
 #define SPRING_MOTION_NETWORK_DEFORMER_H
 
+#include <spring_motion/Boundary_plane.h>
 #include <spring_motion/Deform_options.h>
 #include <spring_motion/Deform_report.h>
 #include <spring_motion/Error.h>
@@ -71,6 +72,18 @@ public:
   using Point = std::array<double, D>;
 
   Network_deformer(Spring_network<D> network, std::vector<Vertex_role> roles, Role_checks checks = Role_checks::here)
+      : Network_deformer(std::move(network), std::move(roles), {}, checks)
+  {
+  }
+
+  /// With the planes of (some of) the parts the sliding vertices lie on
+  /// given, instead of fitted on `network`: a symmetry plane known exactly,
+  /// or a part of a partitioned mesh, whose planes are fitted on the whole
+  /// mesh (`sliding_planes`). The parts whose planes are not given are
+  /// fitted on `network`. With planes given every model runs as a block
+  /// system, as it does with sliding vertices.
+  Network_deformer(Spring_network<D> network, std::vector<Vertex_role> roles, std::vector<Boundary_plane<D>> planes,
+                   Role_checks checks = Role_checks::here)
       : net_(std::move(network)), roles_(std::move(roles))
   {
     const std::size_t n = net_.number_of_vertices();
@@ -78,7 +91,8 @@ public:
     positions_ = net_.points;
     record_ = record_orientations(net_, positions_);
     const std::vector<char> used = used_vertices(net_);
-    sliding_ = internal::sliding_set(net_, roles_);
+    sliding_ = internal::sliding_set(net_, roles_, planes);
+    planes_given_ = !planes.empty();
     std::vector<char> pinned(n, 0);
     for(Index i : sliding_.pinned)
       pinned[i] = 1;
@@ -465,8 +479,10 @@ private:
     Stiffness_context ctx{D, net_.longest_initial_edge};
     internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, angle_scratch_, threads);
     // sliding vertices couple the coordinates: then every model runs as a
-    // block system (an edge model's k I blocks are its scalar system)
-    const bool block = element_model || !sliding_vertices_.empty();
+    // block system (an edge model's k I blocks are its scalar system); so it
+    // does with planes given, so that every part of a partitioned mesh runs
+    // the block system of the whole, whether or not it holds sliding vertices
+    const bool block = element_model || !sliding_vertices_.empty() || planes_given_;
     if(solver_.needs_build(net_, free_, block, options.solver)) {
       solver_.build(net_, free_, block, options.solver);
       solver_.set_projectors(sliding_vertices_, sliding_projectors_);
@@ -549,6 +565,7 @@ private:
   // sliding vertices: their planes, and (those some element uses) their
   // projectors, in the form the solver takes
   internal::Sliding_set<D> sliding_;
+  bool planes_given_ = false;
   std::vector<Index> sliding_vertices_;
   std::vector<std::array<double, D * D>> sliding_projectors_;
   std::vector<Point> positions_, increment_, previous_increment_;

@@ -3,6 +3,7 @@
 #ifndef SPRING_MOTION_SPRING_MOTION_H
 #define SPRING_MOTION_SPRING_MOTION_H
 
+#include <spring_motion/Boundary_plane.h>
 #include <spring_motion/Deform_report.h>
 #include <spring_motion/Error.h>
 #include <spring_motion/Spring_network.h>

@@ -4,6 +4,7 @@
 #ifndef SPRING_MOTION_SRC_CLI_PARTITIONED_RUN_H
 #define SPRING_MOTION_SRC_CLI_PARTITIONED_RUN_H
 
+#include <spring_motion/Boundary_plane.h>
 #include <spring_motion/Deform_report.h>
 #include <spring_motion/Error.h>
 #include <spring_motion/Network_deformer.h>
@@ -37,29 +38,40 @@ public:
   using Point = std::array<double, D>;
 
   /// Rank 0: partitions the whole mesh (whose roles were checked), sends
-  /// every other rank its part and keeps its own. `vertex_number`: the file's
-  /// number of each network vertex, for the other ranks' error messages.
+  /// every other rank its part and keeps its own. `planes`: those of the
+  /// parts the sliding vertices lie on, fitted on the whole mesh
+  /// (`sliding_planes`). `vertex_number`: the file's number of each network
+  /// vertex, for the other ranks' error messages.
   Partitioned_run(MPI_Comm comm, const Spring_network<D>& whole, const std::vector<Vertex_role>& roles,
-                  const std::vector<std::size_t>& vertex_number)
-      : comm_(comm)
+                  std::vector<Boundary_plane<D>> planes, const std::vector<std::size_t>& vertex_number)
+      : comm_(comm), planes_(std::move(planes))
   {
     int ranks;
     MPI_Comm_size(comm_, &ranks);
     MPI_Comm_rank(comm_, &rank_);
     counts_.vertices = whole.number_of_vertices();
     counts_.elements = whole.number_of_elements();
+    // counted as the whole mesh's deformer counts them: sliding vertices
+    // that their planes pin are fixed
     const std::vector<char> used = used_vertices(whole);
+    std::vector<char> pinned(whole.number_of_vertices(), 0);
+    for(Index v : internal::sliding_set(whole, roles, planes_).pinned)
+      pinned[v] = 1;
     for(Index v = 0; v < used.size(); ++v)
-      if(used[v] && roles[v] != Vertex_role::free)
-        ++(roles[v] == Vertex_role::moving ? counts_.moving_vertices : counts_.fixed_vertices);
+      if(used[v] && roles[v] == Vertex_role::moving)
+        ++counts_.moving_vertices;
+      else if(used[v] && (roles[v] == Vertex_role::fixed || pinned[v]))
+        ++counts_.fixed_vertices;
+      else if(used[v] && roles[v] == Vertex_role::sliding)
+        ++counts_.sliding_vertices;
     const std::vector<int> owner = internal::partition_vertices(whole, ranks);
     for(int r = 1; r < ranks; ++r) {
-      const std::vector<double> message = pack(internal::extract_part(whole, roles, owner, ranks, r), vertex_number);
+      const std::vector<double> message = pack(internal::extract_part(whole, roles, planes_, owner, ranks, r), vertex_number);
       unsigned long long size = message.size();
       MPI_Send(&size, 1, MPI_UNSIGNED_LONG_LONG, r, 0, comm_);
       MPI_Send(message.data(), int(message.size()), MPI_DOUBLE, r, 1, comm_);
     }
-    part_ = internal::extract_part(whole, roles, owner, ranks, 0);
+    part_ = internal::extract_part(whole, roles, planes_, owner, ranks, 0);
     for(Index v : part_.global_vertex)
       vertex_number_.push_back(vertex_number[v]);
     set_rows();
@@ -79,18 +91,21 @@ public:
 
   int rank() const { return rank_; }
 
-  /// The part's network and roles, for the deformer (taken once).
+  /// The part's network, roles and sliding planes, for the deformer (taken once).
   Spring_network<D> take_network() { return std::move(part_.network); }
   std::vector<Vertex_role> take_roles() { return std::move(part_.roles); }
+  std::vector<Boundary_plane<D>> take_planes() { return std::move(planes_); }
 
-  Solve_report solve(const Step_system_view<D>& view, std::vector<Point>& x, double rtol)
+  Solve_report solve(const Step_system_view<D>& view, std::vector<Point>& x, const Solver_options& options)
   {
     internal::Petsc_solve_report pr;
-    if(internal::petsc_solve_step_system<D>(comm_, view, rows_, rtol, x, pr) != 0)
+    if(internal::petsc_solve_step_system<D>(comm_, view, rows_, options, x, pr) != 0)
       throw Error("PETSc's solve of a step failed");
     Solve_report r;
     r.iterations = std::size_t(pr.iterations);
     r.converged = pr.converged;
+    r.last_max_update = pr.last_max_update;
+    r.error_estimate = pr.error_estimate;
     return r;
   }
 
@@ -133,6 +148,7 @@ public:
     rep.elements = counts_.elements;
     rep.moving_vertices = counts_.moving_vertices;
     rep.fixed_vertices = counts_.fixed_vertices;
+    rep.sliding_vertices = counts_.sliding_vertices;
     std::vector<double> lows, highs;
     for(const Step_report& s : rep.steps) {
       lows.insert(lows.end(), {s.min_angle_deg_moving, s.min_angle_deg_all, s.min_size_ratio});
@@ -229,8 +245,14 @@ private:
     std::vector<double> m{double(nv), double(ne), double(p.owned_vertices), double(p.first_row),
                           double(p.owned_rows), double(p.total_rows), p.network.longest_initial_edge,
                           double(counts_.vertices), double(counts_.elements), double(counts_.moving_vertices),
-                          double(counts_.fixed_vertices)};
-    m.reserve(m.size() + nv * (D + 4) + ne * (D + 3));
+                          double(counts_.fixed_vertices), double(counts_.sliding_vertices),
+                          double(planes_.size())};
+    m.reserve(m.size() + nv * (D + 5) + ne * (D + 3) + p.network.vertex_labels.size() + planes_.size() * (D + 2));
+    for(const Boundary_plane<D>& pl : planes_) {
+      m.push_back(double(pl.label));
+      m.push_back(double(pl.axis));
+      m.insert(m.end(), pl.normal.begin(), pl.normal.end());
+    }
     for(const auto& q : p.network.points)
       m.insert(m.end(), q.begin(), q.end());
     for(const auto& e : p.network.elements)
@@ -241,6 +263,10 @@ private:
       m.push_back(double(p.global_vertex[i]));
       m.push_back(p.free_row[i] == p.no_row ? -1.0 : double(p.free_row[i]));
       m.push_back(double(vertex_number[p.global_vertex[i]]));
+      const Index lb = p.network.vertex_label_offsets[i], le = p.network.vertex_label_offsets[i + 1];
+      m.push_back(double(le - lb));
+      for(Index q = lb; q < le; ++q)
+        m.push_back(double(p.network.vertex_labels[q]));
     }
     for(std::size_t t = 0; t < ne; ++t) {
       m.push_back(double(p.global_element[t]));
@@ -263,6 +289,14 @@ private:
     counts_.elements = std::size_t(next());
     counts_.moving_vertices = std::size_t(next());
     counts_.fixed_vertices = std::size_t(next());
+    counts_.sliding_vertices = std::size_t(next());
+    planes_.resize(std::size_t(next()));
+    for(Boundary_plane<D>& pl : planes_) {
+      pl.label = int(next());
+      pl.axis = int(next());
+      for(auto& c : pl.normal)
+        c = next();
+    }
     std::vector<std::array<double, D>> points(nv);
     for(auto& q : points)
       for(auto& c : q)
@@ -271,12 +305,18 @@ private:
     for(auto& e : elements)
       for(auto& v : e)
         v = Index(next());
+    std::vector<Index> label_offsets{0};
+    std::vector<int> vertex_labels;
     for(std::size_t i = 0; i < nv; ++i) {
       part_.roles.push_back(Vertex_role(int(next())));
       part_.global_vertex.push_back(Index(next()));
       const double row = next();
       part_.free_row.push_back(row < 0 ? part_.no_row : std::size_t(row));
       vertex_number_.push_back(std::size_t(next()));
+      const std::size_t labels = std::size_t(next());
+      for(std::size_t q = 0; q < labels; ++q)
+        vertex_labels.push_back(int(next()));
+      label_offsets.push_back(Index(vertex_labels.size()));
     }
     for(std::size_t t = 0; t < ne; ++t) {
       part_.global_element.push_back(std::size_t(next()));
@@ -284,6 +324,8 @@ private:
     }
     part_.network = make_spring_network<D>(std::move(points), std::move(elements));
     part_.network.longest_initial_edge = longest;
+    part_.network.vertex_label_offsets = std::move(label_offsets);
+    part_.network.vertex_labels = std::move(vertex_labels);
   }
 
   // the concatenation of every rank's `mine` on rank 0 (empty elsewhere)
@@ -325,8 +367,9 @@ private:
   MPI_Comm comm_;
   int rank_ = 0;
   internal::Mesh_part<D> part_;
+  std::vector<Boundary_plane<D>> planes_;
   internal::Petsc_rows rows_;
-  Deform_report counts_; // the whole mesh's vertices, elements, moving and fixed vertices
+  Deform_report counts_; // the whole mesh's vertices, elements, moving, fixed and sliding vertices
   std::vector<std::size_t> vertex_number_; // per local vertex: the file's number
 };
 

@@ -171,9 +171,6 @@ Deform_settings parse_deform(const Arguments& a)
       throw Usage_error("--backend: expected shared or petsc, found '" + *backend + "'");
   }
 
-  if(s.petsc && s.sliding)
-    throw Usage_error("--sliding is not supported with --backend petsc: the planes are fitted on the whole mesh, "
-                      "which a rank's part does not hold");
   for(const std::string& path : a.values("output"))
     s.outputs.push_back(classify_output(path));
   const bool has_pvd = std::any_of(s.outputs.begin(), s.outputs.end(),
@@ -270,11 +267,6 @@ std::string summary_line(const Deform_report& r, const std::vector<Output_file>&
 }
 
 #ifdef SPRING_MOTION_WITH_PETSC
-// The relative residual PETSc's CG stops at: its test is on the residual,
-// the built-in solver's on the error in length units, so it is set well
-// below --tolerance (the meshes' lengths are of order 1).
-double petsc_rtol(const Deform_settings& s) { return 1e-3 * s.options.solver.tolerance; }
-
 /// MPI and PETSc for the run (--backend petsc), finalized on the way out,
 /// also by an exception: every rank meets the same one, since every rank
 /// reads the same files and checks the same roles (an error of one rank
@@ -421,7 +413,7 @@ int run_deformer(const Deform_settings& s, Mesh_setup<D>* setup, Network_deforme
     if(partitioned->rank() == 0)
       whole_record = record_orientations(setup->network, setup->network.points);
     deformer.solve_override = [&](const Step_system_view<D>& view, std::vector<Point>& x) {
-      return partitioned->solve(view, x, petsc_rtol(s));
+      return partitioned->solve(view, x, s.options.solver);
     };
     deformer.agree_on_validity = [&](bool valid) { return partitioned->agree(valid); };
   }
@@ -540,12 +532,15 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
 #ifdef SPRING_MOTION_WITH_PETSC
   if(s.petsc) {
     check_vertex_roles(setup.network, roles); // a part may have no moving vertex
+    // fitted on the whole mesh: a part may hold too few of a plane's vertices
+    std::vector<Boundary_plane<D>> planes = sliding_planes(setup.network, roles);
     send_header<D>(motion);
     std::vector<std::size_t> numbers(setup.network.number_of_vertices());
     for(Index v = 0; v < numbers.size(); ++v)
       numbers[v] = setup.vertex_number(v);
-    Partitioned_run<D> partitioned(PETSC_COMM_WORLD, setup.network, roles, numbers);
-    Network_deformer<D> deformer(partitioned.take_network(), partitioned.take_roles(), Role_checks::by_caller);
+    Partitioned_run<D> partitioned(PETSC_COMM_WORLD, setup.network, roles, std::move(planes), numbers);
+    Network_deformer<D> deformer(partitioned.take_network(), partitioned.take_roles(), partitioned.take_planes(),
+                               Role_checks::by_caller);
     return run_deformer<D>(s, &setup, deformer, &partitioned, motion, out, err, err_is_terminal);
   }
 #endif
@@ -669,7 +664,8 @@ int run_received_part(const Deform_settings& s, std::ostream& out, std::ostream&
   if(motion.displacement)
     receive_displacements(*motion.displacement);
   Partitioned_run<D> partitioned(PETSC_COMM_WORLD);
-  Network_deformer<D> deformer(partitioned.take_network(), partitioned.take_roles(), Role_checks::by_caller);
+  Network_deformer<D> deformer(partitioned.take_network(), partitioned.take_roles(), partitioned.take_planes(),
+                               Role_checks::by_caller);
   return motion.visit([&](const auto& m) {
     return run_deformer<D>(s, nullptr, deformer, &partitioned, m, out, err, false);
   });

@@ -134,9 +134,9 @@ options:
                        when other processes keep the cores busy)
   --backend NAME       shared (default): this library's solver; petsc: the
                        mesh partitioned over the MPI ranks of mpiexec -n N,
-                       each step's system solved by PETSc (CG + GAMG); not
-                       with --sliding (a build with SPRING_MOTION_WITH_PETSC=ON;
-                       docs/scaling.md)
+                       each step's system solved by PETSc (CG + GAMG) to the
+                       same error estimate (a build with
+                       SPRING_MOTION_WITH_PETSC=ON; docs/scaling.md)
   --output OUT         by extension, may be repeated:
                        .vtu   the final mesh, with point 'displacement' and cell
                               'skewness' (R), 'valid' (1/0) and 'label'

@@ -67,6 +67,13 @@ def main():
             sys.exit("mesh %r vs %r" % (r0["mesh"], r1["mesh"]))
         if r0["first_invalid"] and r0["first_invalid"]["elements"] != r1["first_invalid"]["elements"]:
             sys.exit("inverted elements %r vs %r" % (r0["first_invalid"]["elements"], r1["first_invalid"]["elements"]))
+        # PETSc's CG stops by the shared solver's rule: the error estimate of
+        # every solve within half the tolerance
+        tolerance = r1["solver"]["tolerance"]
+        for q in r1["steps"]:
+            if q["converged"] and q["iterations"] > 0 and not q["error_estimate"] <= 0.5 * tolerance:
+                sys.exit("step %d: error estimate %r above half the tolerance %g"
+                         % (q["step"], q["error_estimate"], tolerance))
         for q0, q1 in zip(r0["steps"], r1["steps"]):
             if q0["inverted"] != q1["inverted"]:
                 sys.exit("step %d: %d vs %d inverted" % (q0["step"], q0["inverted"], q1["inverted"]))

@@ -5,6 +5,7 @@
 #include <spring_motion/Error.h>
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/Vertex_role.h>
+#include <spring_motion/internal/geometry/sliding_planes.h>
 
 #include <algorithm>
 #include <array>
@@ -98,29 +99,37 @@ struct Mesh_part
 
 /// Part `part` of the mesh under `owner` (partition_vertices). The part's
 /// network has the whole mesh's longest initial edge, which scales the
-/// stiffness. A part that owns no vertex holds element 0 as a ghost, so that
-/// it is a valid network and its rank takes part in every step like the others.
-/// Sliding vertices are not supported (their planes are fitted on the whole mesh).
+/// stiffness, and its vertices' boundary labels. A part that owns no vertex
+/// holds element 0 as a ghost, so that it is a valid network and its rank
+/// takes part in every step like the others. `planes`: those of the parts
+/// sliding vertices lie on, fitted on the whole mesh (`sliding_planes`),
+/// which the part's deformer is given; with them it tells which sliding
+/// vertices their planes pin (no row) as the whole mesh's deformer does.
 template <int D>
 Mesh_part<D> extract_part(const Spring_network<D>& net, const std::vector<Vertex_role>& roles,
-                          const std::vector<int>& owner, int parts, int part)
+                          const std::vector<Boundary_plane<D>>& planes, const std::vector<int>& owner, int parts,
+                          int part)
 {
   const std::size_t n = net.number_of_vertices();
   SPRING_MOTION_CHECK(roles.size() == n && owner.size() == n, "extract_part: one role and owner per vertex expected");
   const std::vector<char> used = used_vertices(net);
+  // the vertices with a row: free ones, and sliding ones their planes do not pin
+  std::vector<char> in_system(n, 0);
+  for(Index v = 0; v < n; ++v)
+    in_system[v] = used[v] && (roles[v] == Vertex_role::free || roles[v] == Vertex_role::sliding);
+  for(Index v : sliding_set(net, roles, planes).pinned)
+    in_system[v] = 0;
   Mesh_part<D> p;
   // the whole free system's rows: part after part, by vertex number within a part
   std::vector<std::size_t> rows_of(std::size_t(parts) + 1, 0), row(n, Mesh_part<D>::no_row);
-  for(Index v = 0; v < n; ++v) {
-    SPRING_MOTION_CHECK(roles[v] != Vertex_role::sliding, "extract_part: sliding vertices are not supported");
-    if(used[v] && roles[v] == Vertex_role::free)
+  for(Index v = 0; v < n; ++v)
+    if(in_system[v])
       ++rows_of[std::size_t(owner[v]) + 1];
-  }
   std::partial_sum(rows_of.begin(), rows_of.end(), rows_of.begin());
   {
     std::vector<std::size_t> next(rows_of.begin(), rows_of.end() - 1);
     for(Index v = 0; v < n; ++v)
-      if(used[v] && roles[v] == Vertex_role::free)
+      if(in_system[v])
         row[v] = next[std::size_t(owner[v])]++;
   }
   p.first_row = rows_of[std::size_t(part)];
@@ -166,6 +175,14 @@ Mesh_part<D> extract_part(const Spring_network<D>& net, const std::vector<Vertex
   }
   p.network = make_spring_network<D>(std::move(points), std::move(elements));
   p.network.longest_initial_edge = net.longest_initial_edge;
+  p.network.vertex_label_offsets.assign(1, 0);
+  p.network.vertex_labels.clear();
+  for(Index v : p.global_vertex) {
+    const auto first = net.vertex_labels.begin();
+    p.network.vertex_labels.insert(p.network.vertex_labels.end(), first + std::ptrdiff_t(net.vertex_label_offsets[v]),
+                                   first + std::ptrdiff_t(net.vertex_label_offsets[v + 1]));
+    p.network.vertex_label_offsets.push_back(Index(p.network.vertex_labels.size()));
+  }
   return p;
 }
 

@@ -2,6 +2,7 @@
 #ifndef SPRING_MOTION_INTERNAL_GEOMETRY_SLIDING_PLANES_H
 #define SPRING_MOTION_INTERNAL_GEOMETRY_SLIDING_PLANES_H
 
+#include <spring_motion/Boundary_plane.h>
 #include <spring_motion/Error.h>
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/Vertex_role.h>
@@ -15,15 +16,6 @@
 
 namespace spring_motion {
 namespace internal {
-
-/// The plane (2D: the line) of a labelled boundary part: a unit normal, and
-/// the axis it is when it is one (then the normal is exactly +-e_axis).
-template <int D>
-struct Part_plane
-{
-  std::array<double, D> normal{};
-  int axis = -1;
-};
 
 /// What a sliding vertex may do: move within the intersection of the planes
 /// of its parts. `normals` are orthonormal (count of them in use), axis-aligned
@@ -47,110 +39,16 @@ struct Sliding_set
   std::vector<Index> pinned;
 };
 
-/// Fits the plane of the vertices carrying `label` and checks that they lie
-/// on it: the normal from the point farthest from the centroid and the one
-/// spanning the largest triangle with it (exact for a planar part up to
-/// rounding, and a planar part is what a symmetry plane is); a normal within
-/// 1e-12 of an axis becomes that axis exactly.
-template <int D>
-Part_plane<D> fit_part_plane(const Spring_network<D>& net, int label)
-{
-  using Point = std::array<double, D>;
-  std::vector<Point> p;
-  for(Index i = 0; i < net.number_of_vertices(); ++i)
-    for(Index q = net.vertex_label_offsets[i]; q < net.vertex_label_offsets[i + 1]; ++q)
-      if(net.vertex_labels[q] == label) {
-        p.push_back(net.points[i]);
-        break;
-      }
-  SPRING_MOTION_CHECK(p.size() >= std::size_t(D), "sliding part " << label << " has " << p.size()
-                                                                  << " vertices: too few to span a plane");
-  Point c{};
-  for(const auto& q : p)
-    for(int k = 0; k < D; ++k)
-      c[k] += q[k] / double(p.size());
-  const auto minus = [](const Point& a, const Point& b) {
-    Point d;
-    for(int k = 0; k < D; ++k)
-      d[k] = a[k] - b[k];
-    return d;
-  };
-  const auto dot = [](const Point& a, const Point& b) {
-    double s = 0;
-    for(int k = 0; k < D; ++k)
-      s += a[k] * b[k];
-    return s;
-  };
-  Point a{};
-  double extent = 0;
-  for(const auto& q : p) {
-    const Point d = minus(q, c);
-    if(dot(d, d) > extent) {
-      extent = dot(d, d);
-      a = d;
-    }
-  }
-  extent = std::sqrt(extent);
-  SPRING_MOTION_CHECK(extent > 0, "sliding part " << label << " is a single point");
-  Part_plane<D> plane;
-  if constexpr(D == 2) {
-    plane.normal = {-a[1] / extent, a[0] / extent};
-  } else {
-    const auto cross = [](const Point& u, const Point& v) {
-      return Point{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    };
-    Point best{};
-    double largest = 0;
-    for(const auto& q : p) {
-      const Point n = cross(a, minus(q, c));
-      if(dot(n, n) > largest) {
-        largest = dot(n, n);
-        best = n;
-      }
-    }
-    SPRING_MOTION_CHECK(largest > 1e-24 * extent * extent * extent * extent,
-                        "sliding part " << label << " lies on a line: it spans no plane");
-    const double l = std::sqrt(largest);
-    for(int k = 0; k < D; ++k)
-      plane.normal[k] = best[k] / l;
-  }
-  for(int k = 0; k < D; ++k) {
-    bool along = std::abs(std::abs(plane.normal[k]) - 1) < 1e-12;
-    for(int j = 0; j < D; ++j)
-      along = along && (j == k || std::abs(plane.normal[j]) < 1e-12);
-    if(along) {
-      plane.normal = Point{};
-      plane.normal[k] = 1;
-      plane.axis = k;
-    }
-  }
-  double off = 0;
-  Index worst = 0;
-  for(std::size_t i = 0; i < p.size(); ++i) {
-    const double d = std::abs(dot(plane.normal, minus(p[i], c)));
-    if(d > off) {
-      off = d;
-      worst = Index(i);
-    }
-  }
-  if(!(off <= 1e-8 * extent)) {
-    std::ostringstream at;
-    for(int k = 0; k < D; ++k)
-      at << (k ? ", " : "") << p[worst][k];
-    SPRING_MOTION_CHECK(false, "sliding part " << label << " is not planar: its vertex at (" << at.str() << ") lies "
-                                               << off << " off its plane (part size " << extent
-                                               << "): expected a plane" << (D == 2 ? " (a straight line in 2D)" : ""));
-  }
-  return plane;
-}
-
 /// The sliding vertices of `roles` with the planes of the labelled parts
-/// each lies on.
+/// each lies on: those of `given`, the others fitted on `net`.
 template <int D>
-Sliding_set<D> sliding_set(const Spring_network<D>& net, const std::vector<Vertex_role>& roles)
+Sliding_set<D> sliding_set(const Spring_network<D>& net, const std::vector<Vertex_role>& roles,
+                           const std::vector<Boundary_plane<D>>& given = {})
 {
   Sliding_set<D> out;
-  std::map<int, Part_plane<D>> planes;
+  std::map<int, Boundary_plane<D>> planes;
+  for(const Boundary_plane<D>& pl : given)
+    SPRING_MOTION_CHECK(planes.emplace(pl.label, pl).second, "two planes given for part " << pl.label);
   for(Index i = 0; i < net.number_of_vertices(); ++i) {
     if(roles[i] != Vertex_role::sliding)
       continue;
@@ -158,16 +56,16 @@ Sliding_set<D> sliding_set(const Spring_network<D>& net, const std::vector<Verte
     SPRING_MOTION_VERTEX_CHECK(lb < le, i, "sliding vertex " << i << " lies on no labelled boundary part: "
                                                                  "expected a part whose plane it slides in");
     // axis-aligned normals first: Gram-Schmidt then leaves them exact
-    std::vector<Part_plane<D>> mine;
+    std::vector<Boundary_plane<D>> mine;
     for(Index q = lb; q < le; ++q) {
       const int l = net.vertex_labels[q];
       auto it = planes.find(l);
       if(it == planes.end())
-        it = planes.emplace(l, fit_part_plane(net, l)).first;
+        it = planes.emplace(l, fit_boundary_plane(net, l)).first;
       mine.push_back(it->second);
     }
     std::stable_sort(mine.begin(), mine.end(),
-                     [](const Part_plane<D>& x, const Part_plane<D>& y) { return (x.axis >= 0) > (y.axis >= 0); });
+                     [](const Boundary_plane<D>& x, const Boundary_plane<D>& y) { return (x.axis >= 0) > (y.axis >= 0); });
     Sliding_vertex<D> s;
     s.vertex = i;
     for(const auto& pl : mine) {

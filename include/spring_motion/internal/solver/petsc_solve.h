@@ -3,12 +3,15 @@
 #define SPRING_MOTION_INTERNAL_SOLVER_PETSC_SOLVE_H
 
 // Only with the CMake option SPRING_MOTION_WITH_PETSC (docs/scaling.md).
+#include <spring_motion/Solver_options.h>
 #include <spring_motion/Step_system_view.h>
+#include <spring_motion/internal/solver/stopping_test.h>
 
 #include <petscksp.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 namespace spring_motion {
@@ -19,6 +22,47 @@ struct Petsc_solve_report
 {
   PetscInt iterations = 0; ///< CG iterations, summed over the components of a scalar system
   bool converged = true;
+  double last_max_update = 0, error_estimate = 0; ///< the largest over the components
+};
+
+// KSP's convergence test replaced by the shared solver's (Stopping_test):
+// fed the largest change of the iterate in each CG iteration, a global
+// maximum, so that every rank stops at the same iteration. A zero residual
+// norm (CG's natural norm, sqrt(r.z), zero only with r) ends the solve
+// at once: the iterate is the solution, its error zero. So does CG itself
+// when r.z vanishes before the test decides (`decided` false).
+struct Petsc_stopping
+{
+  Stopping_test test;
+  Vec previous = nullptr, change = nullptr;
+  bool decided = false;
+
+  static PetscErrorCode converged(KSP ksp, PetscInt n, PetscReal rnorm, KSPConvergedReason* reason, void* self)
+  {
+    auto& me = *static_cast<Petsc_stopping*>(self);
+    Vec x;
+    PetscCall(KSPBuildSolution(ksp, nullptr, &x));
+    *reason = KSP_CONVERGED_ITERATING;
+    if(rnorm == 0) {
+      *reason = KSP_CONVERGED_ATOL;
+      return 0;
+    }
+    if(n == 0) {
+      PetscCall(VecCopy(x, me.previous));
+      return 0;
+    }
+    PetscCall(VecWAXPY(me.change, -1.0, me.previous, x));
+    PetscReal update;
+    PetscCall(VecNorm(me.change, NORM_INFINITY, &update));
+    PetscCall(VecCopy(x, me.previous));
+    if(!std::isfinite(double(update)))
+      *reason = KSP_DIVERGED_NANORINF;
+    else if(me.test.done(double(update))) {
+      *reason = KSP_CONVERGED_ATOL;
+      me.decided = true;
+    }
+    return 0;
+  }
 };
 
 /// Where the rows of a step system go in a distributed PETSc matrix:
@@ -39,11 +83,13 @@ struct Petsc_rows
 /// receives the solution of every row of its view in `x` (in the view's order).
 /// A scalar system is an AIJ matrix solved once per component; a block system
 /// is an AIJ matrix of block size D, one solve for all components, so GAMG
-/// aggregates whole vertices and sees the D x D coupling. `rtol` bounds the preconditioned residual norm
-/// relative to the right-hand side's.
+/// aggregates whole vertices and sees the D x D coupling. Each solve stops
+/// by the shared solver's rule (`options.stopping`, `tolerance`,
+/// `max_iterations`: Stopping_test), fed the largest change of the iterate
+/// over all ranks, per component for a scalar system.
 template <int D>
 PetscErrorCode petsc_solve_step_system(MPI_Comm comm, const Step_system_view<D>& s, const Petsc_rows& rows,
-                                       double rtol, std::vector<std::array<double, D>>& x,
+                                       const Solver_options& options, std::vector<std::array<double, D>>& x,
                                        Petsc_solve_report& report)
 {
   const PetscInt bs = s.block ? D : 1;
@@ -111,9 +157,15 @@ PetscErrorCode petsc_solve_step_system(MPI_Comm comm, const Step_system_view<D>&
   PC pc;
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCGAMG));
-  PetscCall(KSPSetTolerances(ksp, rtol, 0.0, PETSC_DEFAULT, 100000));
+  PetscCall(KSPSetTolerances(ksp, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PetscInt(options.max_iterations)));
   PetscCall(KSPSetInitialGuessNonzero(ksp, PETSC_TRUE));
+  // the test below needs no residual norm; CG's natural norm costs no reduction
+  PetscCall(KSPSetNormType(ksp, KSP_NORM_NATURAL));
   PetscCall(KSPSetFromOptions(ksp));
+  Petsc_stopping stopping{Stopping_test(options)};
+  PetscCall(VecDuplicate(u, &stopping.previous));
+  PetscCall(VecDuplicate(u, &stopping.change));
+  PetscCall(KSPSetConvergenceTest(ksp, &Petsc_stopping::converged, &stopping, nullptr));
 
   x.assign(s.rows, std::array<double, D>{});
   report = Petsc_solve_report();
@@ -131,6 +183,8 @@ PetscErrorCode petsc_solve_step_system(MPI_Comm comm, const Step_system_view<D>&
         }
     PetscCall(VecRestoreArray(b, &bv));
     PetscCall(VecRestoreArray(u, &uv));
+    stopping.test = Stopping_test(options);
+    stopping.decided = false;
     PetscCall(KSPSolve(ksp, b, u));
     KSPConvergedReason reason;
     PetscCall(KSPGetConvergedReason(ksp, &reason));
@@ -138,6 +192,9 @@ PetscErrorCode petsc_solve_step_system(MPI_Comm comm, const Step_system_view<D>&
     PetscCall(KSPGetIterationNumber(ksp, &its));
     report.iterations += its;
     report.converged = report.converged && reason > 0;
+    report.last_max_update = std::max(report.last_max_update, stopping.test.last());
+    if(stopping.decided || reason <= 0)
+      report.error_estimate = std::max(report.error_estimate, stopping.test.estimate());
     PetscCall(VecScatterBegin(to_all, u, all, INSERT_VALUES, SCATTER_FORWARD));
     PetscCall(VecScatterEnd(to_all, u, all, INSERT_VALUES, SCATTER_FORWARD));
     const PetscScalar* av;
@@ -148,6 +205,8 @@ PetscErrorCode petsc_solve_step_system(MPI_Comm comm, const Step_system_view<D>&
     PetscCall(VecRestoreArrayRead(all, &av));
   }
   PetscCall(KSPDestroy(&ksp));
+  PetscCall(VecDestroy(&stopping.change));
+  PetscCall(VecDestroy(&stopping.previous));
   PetscCall(VecScatterDestroy(&to_all));
   PetscCall(VecDestroy(&all));
   PetscCall(VecDestroy(&u));

@@ -371,14 +371,18 @@ TEST_CASE("deform: move() step by step reproduces run() with the same schedule",
   REQUIRE(moving.size() == stepped.number_of_moving_vertices());
   const std::vector<std::array<double, 2>>* positions = &stepped.positions();
   const std::array<double, 2>* storage = stepped.positions().data();
-  for(std::size_t i = 1; i <= options.number_of_steps; ++i) {
+  // the moving vertices' displacements at step i of the schedule
+  const auto displacement = [&](std::size_t i) {
     const double t = double(i) / double(options.number_of_steps);
-    std::vector<std::array<double, 2>> displacement;
+    std::vector<std::array<double, 2>> d;
     for(Index v : moving) {
       const auto q = pitch(net.points[v], t);
-      displacement.push_back({q[0] - net.points[v][0], q[1] - net.points[v][1]});
+      d.push_back({q[0] - net.points[v][0], q[1] - net.points[v][1]});
     }
-    const Step_report s = stepped.move(displacement, Grid_scaled_stiffness{}, options);
+    return d;
+  };
+  for(std::size_t i = 1; i <= options.number_of_steps; ++i) {
+    const Step_report s = stepped.move(displacement(i), Grid_scaled_stiffness{}, options);
     CHECK(s.inverted == 0);
     CHECK(s.converged);
     CHECK(s.step == i);
@@ -394,6 +398,21 @@ TEST_CASE("deform: move() step by step reproduces run() with the same schedule",
     for(int c = 0; c < 2; ++c)
       diff = std::max(diff, std::abs(stepped.positions()[v][c] - whole.positions()[v][c]));
   CHECK(diff <= 10 * 2 * double(options.number_of_steps) * options.solver.tolerance);
+
+  // the step memory released after every step: each step rebuilds it and
+  // goes on from the same state
+  Network_deformer<2> released(net, roles);
+  for(std::size_t i = 1; i <= options.number_of_steps; ++i) {
+    const Step_report s = released.move(displacement(i), Grid_scaled_stiffness{}, options);
+    CHECK(s.converged);
+    CHECK(s.step == i);
+    released.release_step_memory();
+  }
+  double diff_released = 0;
+  for(std::size_t v = 0; v < net.number_of_vertices(); ++v)
+    for(int c = 0; c < 2; ++c)
+      diff_released = std::max(diff_released, std::abs(released.positions()[v][c] - whole.positions()[v][c]));
+  CHECK(diff_released <= 10 * 2 * double(options.number_of_steps) * options.solver.tolerance);
 }
 
 TEST_CASE("deform: an invalid move() is rolled back and reported", "[deform][move]")

@@ -66,7 +66,7 @@ Spring_network<3> perturbed_cube(unsigned seed)
   const int axes[6][3] = {{1, 2, 4}, {1, 4, 2}, {2, 1, 4}, {2, 4, 1}, {4, 1, 2}, {4, 2, 1}};
   for(const auto& a : axes)
     tets.push_back({0, Index(a[0]), Index(a[0] + a[1]), 7});
-  return make_spring_network<3>(p, tets);
+  return internal::with_face_slots(make_spring_network<3>(p, tets)); // face-angle models read them
 }
 
 template <class Model>

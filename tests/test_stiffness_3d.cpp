@@ -33,7 +33,8 @@ using P3 = std::array<double, 3>;
 // k of edge a-b of the corner tetrahedron under `model`.
 struct Corner
 {
-  Spring_network<3> net = make_spring_network<3>({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 1, 2, 3}});
+  Spring_network<3> net =
+      internal::with_face_slots(make_spring_network<3>({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 1, 2, 3}}));
   template <class Model>
   std::vector<double> stiffness(const Model& model) const
   {
@@ -95,6 +96,28 @@ TEST_CASE("3D stiffness: Zeng-Ethier with face angles (default) and with dihedra
   const auto kd = c.stiffness(dihedral);
   CHECK(close(kd[c.edge(0, 1)], 1 + 1));
   CHECK(close(kd[c.edge(1, 2)], 1 / std::sqrt(2.0) + 1.5));
+}
+
+TEST_CASE("3D stiffness: the face slots are built on first use, once, and a face-angle model needs them",
+          "[stiffness][3d]")
+{
+  Spring_network<3> net = make_spring_network<3>({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 1, 2, 3}});
+  const internal::Angle_slots& slots = internal::angle_slots(net);
+  CHECK(slots.faces.empty()); // not built with the network: most models never read them
+  std::vector<double> k, scratch;
+  const Stiffness_context ctx{3, net.longest_initial_edge};
+  CHECK_THROWS_WITH(internal::compute_edge_stiffness(net, net.points, Zeng_Ethier_semi_torsional_stiffness{}, ctx, k,
+                                                     scratch, 1),
+                    Catch::Contains("needs the network's face slots"));
+  CHECK_NOTHROW(internal::compute_edge_stiffness(net, net.points, Lineal_stiffness{}, ctx, k, scratch, 1));
+  internal::build_face_slots(net);
+  internal::build_face_slots(net); // a second call keeps what the first built
+  CHECK(slots.faces.size() == 4);
+  CHECK(slots.face_edges.size() == 12);
+  CHECK(slots.edge_face_slot_offsets.back() == 12);
+  // the same stiffness as the corner built with its face slots from the start
+  internal::compute_edge_stiffness(net, net.points, Zeng_Ethier_semi_torsional_stiffness{}, ctx, k, scratch, 1);
+  CHECK(k == Corner().stiffness(Zeng_Ethier_semi_torsional_stiffness{}));
 }
 
 TEST_CASE("3D stiffness: grid-scaled, alpha = 1, beta = 3, dihedral angles, lambda = l0/l", "[stiffness][3d]")

@@ -179,6 +179,22 @@ public:
     last_inverted_.clear();
   }
 
+  /// Frees what only steps use (stiffness, angle scratch, the solver state
+  /// and the attempts' scratch), about half of a deformer's memory, for a
+  /// caller done stepping that writes its results next (the command line,
+  /// before its files). Positions, roles and the warm-start history stay; a
+  /// later step rebuilds the rest, its multigrid aggregates then chosen from
+  /// its own system (so its result is within the solver's tolerance of a
+  /// step without the release, not bitwise equal).
+  void release_step_memory()
+  {
+    std::vector<double>().swap(stiffness_);
+    std::vector<double>().swap(angle_scratch_);
+    solver_ = internal::Free_system<D>();
+    for(std::vector<Point>* v : {&delta_, &candidate_, &moving_targets_, &outside_solution_})
+      std::vector<Point>().swap(*v);
+  }
+
   /// Runs the whole motion from the current state (t = 0 for a new deformer).
   template <class Motion, class Model, class Visitor = Default_deform_visitor>
   Deform_report run(const Motion& motion, const Model& model, const Deform_options& options = {},
@@ -477,6 +493,8 @@ private:
       for(int c = 0; c < D; ++c)
         delta_[i][c] = net_.points[i][c] - positions_[i][c];
     Stiffness_context ctx{D, net_.longest_initial_edge};
+    if(model.angle_kind(D) == Angle_kind::face)
+      internal::build_face_slots(net_);
     internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, angle_scratch_, threads);
     // sliding vertices couple the coordinates: then every model runs as a
     // block system (an edge model's k I blocks are its scalar system); so it

@@ -197,8 +197,6 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
                                           << " elements: the mesh is not a manifold simplicial complex");
       if(s - r == 1)
         net.boundary_facets.push_back(recs[r].first);
-      if constexpr(D == 3)
-        tab.faces.push_back({recs[r].first[0], recs[r].first[1], recs[r].first[2]});
       r = s;
     }
     net.on_boundary.assign(n, 0);
@@ -230,8 +228,44 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
       net.vertex_labels.push_back(p.second);
   }
 
-  // 3D: faces' edges and edge -> face slots, for face-angle models.
+  for(const auto& e : net.edges)
+    net.longest_initial_edge =
+        std::max(net.longest_initial_edge, internal::distance<D>(net.points[e[0]], net.points[e[1]]));
+  return net;
+}
+
+namespace internal {
+
+/// 3D: the unique triangular faces of the network, their edges and the
+/// edge-major order of the face slots, which only models on face angles
+/// (`Angle_kind::face`) read. Built on first use (by `Network_deformer`
+/// before such a model's first step), not with the network: about 80 bytes
+/// per tetrahedron that the other models never touch. Does nothing in 2D or
+/// when built already.
+template <int D>
+void build_face_slots(Spring_network<D>& net)
+{
   if constexpr(D == 3) {
+    using Net = Spring_network<3>;
+    Angle_slots& tab = Network_access::slots(net);
+    if(!tab.edge_face_slot_offsets.empty())
+      return;
+    {
+      std::vector<std::array<Index, 3>> keys;
+      keys.reserve(net.elements.size() * 4);
+      for(const auto& t : net.elements)
+        for(int k = 0; k < 4; ++k) {
+          std::array<Index, 3> key;
+          for(int c = 0; c < 3; ++c)
+            key[c] = t[Net::Tables::facet[k][c]];
+          std::sort(key.begin(), key.end());
+          keys.push_back(key);
+        }
+      std::sort(keys.begin(), keys.end());
+      keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+      keys.shrink_to_fit();
+      tab.faces = std::move(keys);
+    }
     const std::size_t nf = tab.faces.size();
     tab.face_edges.resize(3 * nf);
     std::vector<std::pair<Index, Index>> recs; // edge, slot
@@ -256,14 +290,16 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
     for(std::size_t e = 0; e < net.edges.size(); ++e)
       tab.edge_face_slot_offsets[e + 1] += tab.edge_face_slot_offsets[e];
   }
+}
 
-  for(const auto& e : net.edges)
-    net.longest_initial_edge =
-        std::max(net.longest_initial_edge, internal::distance<D>(net.points[e[0]], net.points[e[1]]));
+/// The network with its face slots built (`build_face_slots`).
+template <int D>
+Spring_network<D> with_face_slots(Spring_network<D> net)
+{
+  build_face_slots(net);
   return net;
 }
 
-namespace internal {
 struct Any_labeled_facet_visitor
 {
   template <class F>

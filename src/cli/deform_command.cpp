@@ -453,6 +453,8 @@ int run_deformer(const Deform_settings& s, Mesh_setup<D>* setup, Network_deforme
       return deformer.run(motion, model, s.options, Command_visitor{&context});
     });
     report.backend = s.petsc ? "petsc" : "shared";
+    // the steps are over: their memory goes before the outputs take theirs
+    deformer.release_step_memory();
 #ifdef SPRING_MOTION_WITH_PETSC
     if(partitioned) {
       partitioned->reduce(report, deformer, s.options.solver.threads);

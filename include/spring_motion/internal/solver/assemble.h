@@ -64,6 +64,8 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   const Angle_kind kind = model.angle_kind(D);
   const long m = long(net.number_of_elements());
   const bool by_face = (kind == Angle_kind::face && D == 3);
+  SPRING_MOTION_CHECK(!by_face || !slots.edge_face_slot_offsets.empty(),
+                      "a model on face angles needs the network's face slots (internal::build_face_slots)");
   constexpr bool sines = Reads_inverse_sin_squared<Model>::value;
   if(kind != Angle_kind::none) {
     if(!by_face) {

@@ -56,11 +56,25 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
   {
     Thread_chooser c;
     const int team = team_steps(c, 0, 100, [](int) { return 3.0; }, [](int) { return 1.0; });
-    CHECK(team <= 7);
+    CHECK(team <= 4);
     CHECK(c.chosen() == 1);
     // the cost of the probes: under 1.25x one thread all along
     const double cost = (team * 3.0 + (100 - team) * 1.0) / 100;
     CHECK(cost < 1.25);
+  }
+  SECTION("busy machine, a short run: the team is tried once in 20 steps")
+  {
+    // the first step on one thread, the team once, then a clear loss (3x)
+    // puts the next probe 32 steps away
+    Thread_chooser c;
+    CHECK(c.next(0) == 1);
+    c.record(1.0, 20);
+    CHECK(team_steps(c, 1, 19, [](int) { return 3.0; }, [](int) { return 1.0; }) == 1);
+  }
+  SECTION("a close call (the team 1.5x slower) is checked again after 8 steps")
+  {
+    Thread_chooser c;
+    CHECK(team_steps(c, 0, 12, [](int) { return 1.5; }, [](int) { return 1.0; }) == 2);
   }
   SECTION("the load comes and goes: the choice follows within the probe interval")
   {

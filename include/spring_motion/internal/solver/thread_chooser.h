@@ -21,9 +21,15 @@ namespace internal {
 /// count (every parallel loop is deterministic), so the choice may follow the
 /// machine's load freely: the cheaper option per unit of work (the step's
 /// time over its iterations plus a few for the stiffness and the check) is
-/// used, and the other is tried again after 8, 16, 32, ... steps (back to 8
-/// when the choice changes), which costs a few per cent when the choice is
-/// right and recovers within a few steps when the load changes.
+/// used, and the other is tried again after 8, 16, 32, ... steps (at most
+/// 64), which costs a few per cent when the choice is right and recovers
+/// within a few steps when the load changes. When the choice changes the
+/// interval starts again at 8, or at 32 when one option cost at least twice
+/// the other: a team stalled by a busy machine costs several times one
+/// thread, and each probe of it costs as much again. The first step, which
+/// also builds the solver's state and so is not measured, runs on one
+/// thread: on a busy machine a team step costs several one-thread steps, on
+/// an idle one the first step costs a little more.
 class Thread_chooser
 {
 public:
@@ -33,8 +39,10 @@ public:
     fixed_ = requested > 0 || thread_count(0) == 1;
     if(fixed_)
       return thread_count(requested);
-    // the team twice (the first step also builds the solver's state, so its
-    // cost is not recorded), then one thread, then the cheaper with probes
+    // one thread for the first step (not measured), the team, one thread,
+    // then the cheaper with probes of the other
+    if(!warm_)
+      return 1;
     if(cost_[0] != cost_[0])
       probing_ = 0;
     else if(cost_[1] != cost_[1])
@@ -63,7 +71,8 @@ public:
     const int cheaper = cost_[1] == cost_[1] && cost_[1] < cost_[0] ? 1 : 0;
     if(cheaper != best_) {
       best_ = cheaper;
-      interval_ = 8;
+      const bool clear = cost_[1 - cheaper] >= 2 * cost_[cheaper];
+      interval_ = clear ? 32 : 8;
     } else if(probing_ != best_ && interval_ < 64)
       interval_ *= 2;
   }

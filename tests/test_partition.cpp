@@ -89,12 +89,14 @@ void check_parts(const Spring_network<D>& net, const std::vector<Vertex_role>& r
   REQUIRE(!expected.empty());
   // the parts' deformers get the planes of the sliding parts fitted on the whole mesh
   const std::vector<Boundary_plane<D>> planes = sliding_planes(net, roles);
+  const std::vector<char> solved =
+      internal::solved_vertices(used_vertices(net), roles, internal::sliding_set(net, roles, planes));
 
   std::map<Index, Row<D>> got;
   std::vector<int> counted(net.number_of_elements(), 0);
   std::vector<std::size_t> rows_seen;
   for(int p = 0; p < parts; ++p) {
-    internal::Mesh_part<D> part = internal::extract_part(net, roles, planes, owner, parts, p);
+    internal::Mesh_part<D> part = internal::extract_part(net, roles, solved, owner, parts, p);
     for(std::size_t t = 0; t < part.global_element.size(); ++t)
       counted[part.global_element[t]] += part.counted[t];
     for(std::size_t i = 0; i < part.global_vertex.size(); ++i) {
@@ -216,11 +218,13 @@ TEST_CASE("partition: a part may hold too few of a plane's vertices to fit it, t
   const auto [net, roles] = sliding_grid<3>(3, {0, 1, 2});
   const std::vector<Boundary_plane<3>> planes = sliding_planes(net, roles);
   REQUIRE(planes.size() == 3);
+  const std::vector<char> solved =
+      internal::solved_vertices(used_vertices(net), roles, internal::sliding_set(net, roles, planes));
   std::size_t found = 0;
   for(Index v = 0; v < net.number_of_vertices(); ++v) {
     std::vector<int> owner(net.number_of_vertices(), 0);
     owner[v] = 1;
-    const auto part = internal::extract_part(net, roles, planes, owner, 2, 1);
+    const auto part = internal::extract_part(net, roles, solved, owner, 2, 1);
     try {
       Network_deformer<3>(part.network, part.roles, Role_checks::by_caller);
     } catch(const Error& e) {
@@ -240,7 +244,7 @@ TEST_CASE("partition: more parts than vertices leaves parts without vertices, ea
   const std::vector<Vertex_role> roles(4, Vertex_role::moving);
   const std::vector<int> owner = internal::partition_vertices(net, 6);
   for(int p = 0; p < 6; ++p) {
-    const auto part = internal::extract_part(net, roles, {}, owner, 6, p);
+    const auto part = internal::extract_part(net, roles, std::vector<char>(4, 0), owner, 6, p);
     const std::size_t owned = std::size_t(std::count(owner.begin(), owner.end(), p));
     CHECK(part.owned_vertices == owned);
     CHECK(part.network.number_of_elements() >= 1);

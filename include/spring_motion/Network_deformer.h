@@ -93,13 +93,11 @@ public:
     const std::vector<char> used = used_vertices(net_);
     sliding_ = internal::sliding_set(net_, roles_, planes);
     planes_given_ = !planes.empty();
-    std::vector<char> pinned(n, 0);
-    for(Index i : sliding_.pinned)
-      pinned[i] = 1;
+    const std::vector<char> solved = internal::solved_vertices(used, roles_, sliding_);
     for(Index i = 0; i < n; ++i) {
       if(!used[i])
         continue; // a vertex no element uses takes no part
-      if(roles_[i] == Vertex_role::free || (roles_[i] == Vertex_role::sliding && !pinned[i]))
+      if(solved[i])
         free_.push_back(i);
       else
         (roles_[i] == Vertex_role::moving ? moving_ : fixed_).push_back(i);

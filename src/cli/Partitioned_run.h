@@ -54,24 +54,20 @@ public:
     // counted as the whole mesh's deformer counts them: sliding vertices
     // that their planes pin are fixed
     const std::vector<char> used = used_vertices(whole);
-    std::vector<char> pinned(whole.number_of_vertices(), 0);
-    for(Index v : internal::sliding_set(whole, roles, planes_).pinned)
-      pinned[v] = 1;
+    const std::vector<char> solved = internal::solved_vertices(used, roles, internal::sliding_set(whole, roles, planes_));
     for(Index v = 0; v < used.size(); ++v)
-      if(used[v] && roles[v] == Vertex_role::moving)
-        ++counts_.moving_vertices;
-      else if(used[v] && (roles[v] == Vertex_role::fixed || pinned[v]))
-        ++counts_.fixed_vertices;
-      else if(used[v] && roles[v] == Vertex_role::sliding)
+      if(used[v] && !solved[v])
+        ++(roles[v] == Vertex_role::moving ? counts_.moving_vertices : counts_.fixed_vertices);
+      else if(solved[v] && roles[v] == Vertex_role::sliding)
         ++counts_.sliding_vertices;
     const std::vector<int> owner = internal::partition_vertices(whole, ranks);
     for(int r = 1; r < ranks; ++r) {
-      const std::vector<double> message = pack(internal::extract_part(whole, roles, planes_, owner, ranks, r), vertex_number);
+      const std::vector<double> message = pack(internal::extract_part(whole, roles, solved, owner, ranks, r), vertex_number);
       unsigned long long size = message.size();
       MPI_Send(&size, 1, MPI_UNSIGNED_LONG_LONG, r, 0, comm_);
       MPI_Send(message.data(), int(message.size()), MPI_DOUBLE, r, 1, comm_);
     }
-    part_ = internal::extract_part(whole, roles, planes_, owner, ranks, 0);
+    part_ = internal::extract_part(whole, roles, solved, owner, ranks, 0);
     for(Index v : part_.global_vertex)
       vertex_number_.push_back(vertex_number[v]);
     set_rows();

@@ -101,35 +101,28 @@ struct Mesh_part
 /// network has the whole mesh's longest initial edge, which scales the
 /// stiffness, and its vertices' boundary labels. A part that owns no vertex
 /// holds element 0 as a ghost, so that it is a valid network and its rank
-/// takes part in every step like the others. `planes`: those of the parts
-/// sliding vertices lie on, fitted on the whole mesh (`sliding_planes`),
-/// which the part's deformer is given; with them it tells which sliding
-/// vertices their planes pin (no row) as the whole mesh's deformer does.
+/// takes part in every step like the others. `solved`: the vertices with a
+/// row (`solved_vertices` of the whole mesh, its sliding planes fitted on the
+/// whole mesh, which the part's deformer is then given).
 template <int D>
 Mesh_part<D> extract_part(const Spring_network<D>& net, const std::vector<Vertex_role>& roles,
-                          const std::vector<Boundary_plane<D>>& planes, const std::vector<int>& owner, int parts,
-                          int part)
+                          const std::vector<char>& solved, const std::vector<int>& owner, int parts, int part)
 {
   const std::size_t n = net.number_of_vertices();
-  SPRING_MOTION_CHECK(roles.size() == n && owner.size() == n, "extract_part: one role and owner per vertex expected");
+  SPRING_MOTION_CHECK(roles.size() == n && owner.size() == n && solved.size() == n,
+                      "extract_part: one role, owner and row flag per vertex expected");
   const std::vector<char> used = used_vertices(net);
-  // the vertices with a row: free ones, and sliding ones their planes do not pin
-  std::vector<char> in_system(n, 0);
-  for(Index v = 0; v < n; ++v)
-    in_system[v] = used[v] && (roles[v] == Vertex_role::free || roles[v] == Vertex_role::sliding);
-  for(Index v : sliding_set(net, roles, planes).pinned)
-    in_system[v] = 0;
   Mesh_part<D> p;
   // the whole free system's rows: part after part, by vertex number within a part
   std::vector<std::size_t> rows_of(std::size_t(parts) + 1, 0), row(n, Mesh_part<D>::no_row);
   for(Index v = 0; v < n; ++v)
-    if(in_system[v])
+    if(solved[v])
       ++rows_of[std::size_t(owner[v]) + 1];
   std::partial_sum(rows_of.begin(), rows_of.end(), rows_of.begin());
   {
     std::vector<std::size_t> next(rows_of.begin(), rows_of.end() - 1);
     for(Index v = 0; v < n; ++v)
-      if(in_system[v])
+      if(solved[v])
         row[v] = next[std::size_t(owner[v])]++;
   }
   p.first_row = rows_of[std::size_t(part)];

@@ -106,6 +106,22 @@ Sliding_set<D> sliding_set(const Spring_network<D>& net, const std::vector<Verte
   return out;
 }
 
+/// The vertices whose increments a step solves for: those some element uses
+/// (`used`) that are free, or sliding and not pinned by their planes. The
+/// one rule the deformer's rows, a partition's row numbering and its vertex
+/// counts share.
+template <int D>
+std::vector<char> solved_vertices(const std::vector<char>& used, const std::vector<Vertex_role>& roles,
+                                  const Sliding_set<D>& sliding)
+{
+  std::vector<char> solved(roles.size(), 0);
+  for(Index v = 0; v < roles.size(); ++v)
+    solved[v] = used[v] && (roles[v] == Vertex_role::free || roles[v] == Vertex_role::sliding);
+  for(Index v : sliding.pinned)
+    solved[v] = 0;
+  return solved;
+}
+
 /// Puts x back on the planes through the vertex's initial point x0 (the
 /// solve keeps it there only to its tolerance); an axis-aligned plane's
 /// coordinate is x0's, bit for bit.

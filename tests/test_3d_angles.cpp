@@ -12,6 +12,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <vector>
@@ -93,14 +94,28 @@ TEST_CASE("3D angles: around the edges of a Triangulation_3 the dihedral angles 
       angle_of_slot[t * 6 + k] = a[k];
   }
   const internal::Angle_slots& slots = internal::angle_slots(net);
-  // into the edge-major order, as the assembly scatters them
+  // into the edge-major layout, as the assembly scatters them from its
+  // traversal (which lists every element once)
   std::vector<double> angle_at(angle_of_slot.size());
-  for(std::size_t slot = 0; slot < angle_of_slot.size(); ++slot)
-    angle_at[slots.slot_position[slot]] = angle_of_slot[slot];
+  std::vector<int> traversed(net.number_of_elements(), 0);
+  for(std::size_t i = 0; i < net.number_of_elements(); ++i) {
+    const Index* v = &slots.ordered_elements[i * 4];
+    const auto t = std::find(net.elements.begin(), net.elements.end(), Spring_network<3>::Element{v[0], v[1], v[2], v[3]});
+    REQUIRE(t != net.elements.end());
+    ++traversed[std::size_t(t - net.elements.begin())];
+    for(int k = 0; k < 6; ++k)
+      angle_at[slots.slot_position[i * 6 + std::size_t(k)]] = angle_of_slot[std::size_t(t - net.elements.begin()) * 6 + std::size_t(k)];
+  }
+  CHECK(std::count(traversed.begin(), traversed.end(), 1) == long(net.number_of_elements()));
+  std::vector<int> laid_out(net.number_of_edges(), 0);
+  for(Index e : slots.layout_edge)
+    ++laid_out[e];
+  CHECK(std::count(laid_out.begin(), laid_out.end(), 1) == long(net.number_of_edges()));
   int interior = 0, cube_edges = 0, diagonals = 0;
-  for(std::size_t e = 0; e < net.number_of_edges(); ++e) {
+  for(std::size_t q = 0; q < net.number_of_edges(); ++q) {
+    const std::size_t e = slots.layout_edge[q];
     double sum = 0;
-    for(Index s = slots.edge_slot_offsets[e]; s < slots.edge_slot_offsets[e + 1]; ++s)
+    for(Index s = slots.layout_slot_offsets[q]; s < slots.layout_slot_offsets[q + 1]; ++s)
       sum += angle_at[s];
     const auto& a = net.points[net.edges[e][0]];
     const auto& b = net.points[net.edges[e][1]];

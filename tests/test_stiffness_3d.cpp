@@ -1,4 +1,6 @@
-// The 3D stiffness models on a reference tetrahedron, by hand.
+// The 3D stiffness models on a reference tetrahedron, by hand; and, for every
+// element-angle model in 2D and 3D, the spatial traversal of the assembly
+// against an edge-by-edge computation.
 //
 // Reference: the trirectangular corner p0 = 0, p1 = e_x, p2 = e_y, p3 = e_z.
 //  - edges 0-1, 0-2, 0-3: length 1, dihedral angle pi/2 (sin^2 = 1);
@@ -19,8 +21,11 @@
 #include <spring_motion/stiffness/Torsional_stiffness.h>
 #include <spring_motion/stiffness/Zeng_Ethier_semi_torsional_stiffness.h>
 
+#include "test_meshes.h"
+
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -142,4 +147,80 @@ TEST_CASE("3D stiffness: the torsional model's edge springs are its lineal part,
   const auto k = c.stiffness(Torsional_stiffness{});
   CHECK(close(k[c.edge(0, 1)], 1.0));
   CHECK(close(k[c.edge(1, 2)], 1 / std::sqrt(2.0)));
+}
+
+namespace {
+// Weighs the m-th angle of an edge by m + 1: any change in the order in which
+// an edge's angles reach the model changes k.
+struct Order_sensitive_model
+{
+  Angle_kind angle_kind(int) const { return Angle_kind::element; }
+  double operator()(double length, const double* angles, std::size_t n, const Stiffness_context&) const
+  {
+    double s = length;
+    for(std::size_t m = 0; m < n; ++m)
+      s += double(m + 1) * angles[m];
+    return s;
+  }
+};
+
+// k of every edge from its angles gathered edge by edge in increasing
+// element order, the order the element-angle models are specified in.
+template <int D, class Model>
+std::vector<double> stiffness_by_edge(const Spring_network<D>& net, const Model& model, const Stiffness_context& ctx)
+{
+  constexpr int E = Spring_network<D>::edges_per_element;
+  std::vector<std::vector<double>> around(net.number_of_edges());
+  for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
+    const auto p = internal::element_points<D>(net.elements, net.points, t);
+    std::array<double, E> a;
+    if constexpr(internal::Reads_inverse_sin_squared<Model>::value)
+      a = internal::element_edge_inverse_sin_squared<D>(p);
+    else
+      a = internal::element_edge_angles<D>(p);
+    for(int j = 0; j < E; ++j)
+      around[net.edge_of(Index(t), j)].push_back(a[std::size_t(j)]);
+  }
+  std::vector<double> k;
+  for(std::size_t e = 0; e < net.number_of_edges(); ++e) {
+    const double l = internal::distance<D>(net.points[net.edges[e][0]], net.points[net.edges[e][1]]);
+    if constexpr(internal::Reads_inverse_sin_squared<Model>::value)
+      k.push_back(model(l, Inverse_sin_squared{around[e].data(), around[e].size()}, ctx));
+    else
+      k.push_back(model(l, around[e].data(), around[e].size(), ctx));
+  }
+  return k;
+}
+
+template <int D, class Model>
+void check_traversal_keeps_values(const Model& model)
+{
+  const auto mesh = spring_motion_test::kuhn_grid<D>(D == 2 ? 24 : 7);
+  const auto net = make_spring_network<D>(mesh.points, mesh.elements);
+  // the traversal is not the element order (else this test shows nothing)
+  const auto& slots = internal::angle_slots(net);
+  std::size_t moved = 0;
+  for(std::size_t i = 0; i < net.number_of_elements(); ++i)
+    moved += !std::equal(net.elements[i].begin(), net.elements[i].end(), &slots.ordered_elements[i * (D + 1)]);
+  CHECK(moved > net.number_of_elements() / 2);
+  const Stiffness_context ctx{D, net.longest_initial_edge};
+  const auto expected = stiffness_by_edge(net, model, ctx);
+  for(int threads : {1, 2}) {
+    std::vector<double> k, scratch;
+    internal::compute_edge_stiffness(net, net.points, model, ctx, k, scratch, threads);
+    INFO("threads " << threads);
+    CHECK(k == expected); // bitwise
+  }
+}
+} // namespace
+
+TEST_CASE("Stiffness: the spatial traversal of the elements gives every edge the value of an edge-by-edge sum in "
+          "element order, bitwise",
+          "[stiffness][3d][2d]")
+{
+  check_traversal_keeps_values<3>(Order_sensitive_model{});
+  check_traversal_keeps_values<3>(Grid_scaled_stiffness{});
+  check_traversal_keeps_values<3>(Blom_semi_torsional_stiffness{});
+  check_traversal_keeps_values<2>(Order_sensitive_model{});
+  check_traversal_keeps_values<2>(Grid_scaled_stiffness{});
 }

@@ -87,6 +87,88 @@ std::vector<char> used_vertices(const Spring_network<D>& net)
   return used;
 }
 
+namespace internal {
+
+/// Interleaves the low 21 bits of x, y, z (3D) or the low 32 of x, y (2D).
+template <int D>
+std::uint64_t morton_code(const std::array<std::uint32_t, D>& q)
+{
+  std::uint64_t code = 0;
+  constexpr int bits = D == 3 ? 21 : 32;
+  for(int b = 0; b < bits; ++b)
+    for(int c = 0; c < D; ++c)
+      code |= std::uint64_t((q[c] >> b) & 1u) << (D * b + c);
+  return code;
+}
+
+/// The traversal and layout of the element angles (see Angle_slots), from
+/// the edges of the network and each slot's rank among its edge's slots.
+template <int D>
+void build_angle_layout(Spring_network<D>& net, const std::vector<Index>& rank)
+{
+  constexpr int E = Spring_network<D>::edges_per_element;
+  constexpr int bits = D == 3 ? 21 : 32;
+  Angle_slots& tab = Network_access::slots(net);
+  const std::size_t m = net.elements.size(), ne = net.edges.size();
+  std::array<double, D> lo, hi;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for(const auto& p : net.points)
+    for(int c = 0; c < D; ++c) {
+      lo[c] = std::min(lo[c], p[c]);
+      hi[c] = std::max(hi[c], p[c]);
+    }
+  std::vector<std::pair<std::uint64_t, Index>> key(m);
+  const double cells = std::ldexp(1.0, bits) - 1;
+  // halves and shares of coordinates, so that no sum or difference of
+  // coordinates near the largest double overflows
+  for(std::size_t t = 0; t < m; ++t) {
+    std::array<std::uint32_t, D> q;
+    for(int c = 0; c < D; ++c) {
+      double centre = 0;
+      for(Index v : net.elements[t])
+        centre += net.points[v][c] / (D + 1);
+      const double u = hi[c] > lo[c] ? (centre / 2 - lo[c] / 2) / (hi[c] / 2 - lo[c] / 2) : 0.0;
+      q[c] = std::uint32_t(std::clamp(u, 0.0, 1.0) * cells);
+    }
+    key[t] = {morton_code<D>(q), Index(t)};
+  }
+  std::sort(key.begin(), key.end());
+  // edges in the order the traversal first meets them
+  constexpr Index unseen = std::numeric_limits<Index>::max();
+  std::vector<Index> layout_of(ne, unseen);
+  tab.layout_edge.clear();
+  tab.layout_edge.reserve(ne);
+  for(const auto& k : key)
+    for(int j = 0; j < E; ++j) {
+      const Index e = net.element_edges[std::size_t(k.second) * E + std::size_t(j)];
+      if(layout_of[e] == unseen) {
+        layout_of[e] = Index(tab.layout_edge.size());
+        tab.layout_edge.push_back(e);
+      }
+    }
+  // the number of slots of each edge is its largest rank + 1
+  std::vector<Index> count(ne, 0);
+  for(std::size_t s = 0; s < m * E; ++s)
+    count[net.element_edges[s]] = std::max(count[net.element_edges[s]], rank[s] + 1);
+  tab.layout_slot_offsets.assign(ne + 1, 0);
+  for(std::size_t q = 0; q < ne; ++q)
+    tab.layout_slot_offsets[q + 1] = tab.layout_slot_offsets[q] + count[tab.layout_edge[q]];
+  tab.ordered_elements.resize(m * (D + 1));
+  tab.slot_position.resize(m * E);
+  for(std::size_t i = 0; i < m; ++i) {
+    const std::size_t t = key[i].second;
+    for(int k = 0; k <= D; ++k)
+      tab.ordered_elements[i * (D + 1) + std::size_t(k)] = net.elements[t][std::size_t(k)];
+    for(int j = 0; j < E; ++j) {
+      const std::size_t s = t * E + std::size_t(j);
+      tab.slot_position[i * E + std::size_t(j)] = tab.layout_slot_offsets[layout_of[net.element_edges[s]]] + rank[s];
+    }
+  }
+}
+
+} // namespace internal
+
 /// Builds the network from points and elements. Throws `Error` on
 /// non-finite coordinates, vertex indices out of range, repeated vertices in
 /// an element, an empty mesh, and labeled facets that are not boundary facets.
@@ -100,7 +182,6 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
   using Tables = typename Net::Tables;
   constexpr int E = Net::edges_per_element;
   Net net;
-  internal::Angle_slots& tab = internal::Network_access::slots(net);
   SPRING_MOTION_CHECK(!elements.empty(), "the mesh has no elements");
   const std::size_t n = points.size();
   SPRING_MOTION_CHECK(n < std::numeric_limits<Index>::max(), "too many vertices: " << n);
@@ -136,16 +217,20 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
       return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.slot < y.slot);
     });
     net.element_edges.resize(m * E);
-    tab.slot_position.resize(recs.size());
-    for(std::size_t r = 0; r < recs.size(); ++r) {
+    // rank of each slot among its edge's slots (they are sorted by slot, so
+    // by element)
+    std::vector<Index> rank(m * E);
+    for(std::size_t r = 0, first = 0; r < recs.size(); ++r) {
       if(r == 0 || recs[r].a != recs[r - 1].a || recs[r].b != recs[r - 1].b) {
         net.edges.push_back({recs[r].a, recs[r].b});
-        tab.edge_slot_offsets.push_back(Index(r));
+        first = r;
       }
       net.element_edges[recs[r].slot] = Index(net.edges.size() - 1);
-      tab.slot_position[recs[r].slot] = Index(r);
+      rank[recs[r].slot] = Index(r - first);
     }
-    tab.edge_slot_offsets.push_back(Index(recs.size()));
+    recs.clear();
+    recs.shrink_to_fit();
+    internal::build_angle_layout(net, rank);
   }
 
   // CSR adjacency, neighbours in increasing order.

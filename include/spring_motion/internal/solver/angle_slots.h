@@ -19,11 +19,20 @@ namespace internal {
 struct Angle_slots
 {
   using Index = std::uint32_t;
-  // slot (element * edges_per_element + local edge) -> its position in the
-  // edge-major order, where the slots of edge e are positions
-  // edge_slot_offsets[e] .. edge_slot_offsets[e + 1] - 1. The inverse map
-  // is not kept: the assembly only scatters into that order.
-  std::vector<Index> edge_slot_offsets, slot_position;
+  // The element angles are computed in a spatial order of the elements
+  // (`ordered_elements`: their vertices, D + 1 per element, elements sorted
+  // by the Morton code of their centroid) and stored edge by edge, the edges
+  // laid out in the order that traversal first meets them: edge
+  // layout_edge[q]'s slots are positions layout_slot_offsets[q] ..
+  // layout_slot_offsets[q + 1] - 1, in increasing element number (so each
+  // edge's angles are summed in the same order whatever the traversal).
+  // slot_position[i * edges_per_element + j] is the position of local edge j
+  // of the i-th element of the traversal. In the file's order the elements
+  // of a Mesh_3 or Gmsh mesh lie scattered through space, and so did the
+  // positions they wrote: on the wing that scatter cost three times the
+  // angles' arithmetic; in this order both the vertices read and the
+  // positions written stay close together.
+  std::vector<Index> ordered_elements, slot_position, layout_slot_offsets, layout_edge;
 
   // 3D only: the unique triangular faces, their edges (local edge k opposite
   // local vertex k) and the same edge-major order for the face slots

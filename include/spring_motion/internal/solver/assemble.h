@@ -50,10 +50,12 @@ inline std::array<double, Spring_network<D>::edges_per_element> element_edge_inv
 /// Throws when the model returns a negative or non-finite value.
 ///
 /// The angles are computed element by element (or face by face) and stored
-/// edge by edge, at their slot's position in the edge-major order: the edge loop then
+/// edge by edge, at their slot's position in an edge-major order: the edge loop then
 /// reads each edge's angles as one contiguous run. Read element by element
 /// instead, the angles of an edge lie far apart, and on the wing that gather
-/// cost more than computing them.
+/// cost more than computing them. Element angles are computed in the
+/// network's spatial traversal (Angle_slots), and the edges then visited in
+/// its layout; each edge's value depends on neither order.
 template <int D, class Model>
 void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
                             const Model& model, const Stiffness_context& ctx, std::vector<double>& k,
@@ -71,15 +73,17 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
     if(!by_face) {
       angles.resize(std::size_t(m) * E);
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
-      for(long t = 0; t < m; ++t) {
-        const auto p = element_points<D>(net.elements, x, std::size_t(t));
+      for(long i = 0; i < m; ++i) {
+        std::array<std::array<double, D>, D + 1> p;
+        for(int v = 0; v <= D; ++v)
+          p[std::size_t(v)] = x[slots.ordered_elements[std::size_t(i) * (D + 1) + std::size_t(v)]];
         std::array<double, E> a;
         if constexpr(sines)
           a = element_edge_inverse_sin_squared<D>(p);
         else
           a = element_edge_angles<D>(p);
         for(int j = 0; j < E; ++j)
-          angles[slots.slot_position[std::size_t(t) * E + std::size_t(j)]] = a[std::size_t(j)];
+          angles[slots.slot_position[std::size_t(i) * E + std::size_t(j)]] = a[std::size_t(j)];
       }
     } else if constexpr(D == 3) {
       const long nf = long(slots.faces.size());
@@ -97,20 +101,23 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
       }
     }
   }
-  const auto& off = by_face ? slots.edge_face_slot_offsets : slots.edge_slot_offsets;
+  // element angles: edges in the layout's order; face angles: in edge order
+  const bool by_layout = kind != Angle_kind::none && !by_face;
+  const auto& off = by_face ? slots.edge_face_slot_offsets : slots.layout_slot_offsets;
   const long ne = long(net.number_of_edges());
   k.resize(std::size_t(ne));
   long bad = ne, coincident = ne;
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(ne))) \
     reduction(min : bad, coincident)
-  for(long e = 0; e < ne; ++e) {
+  for(long q = 0; q < ne; ++q) {
+    const long e = by_layout ? long(slots.layout_edge[std::size_t(q)]) : q;
     const auto& ed = net.edges[std::size_t(e)];
     const double l = distance<D>(x[ed[0]], x[ed[1]]); // > 0 for a tiny edge too
     const double* a = nullptr;
     std::size_t na = 0;
     if(kind != Angle_kind::none) {
-      a = angles.data() + off[std::size_t(e)];
-      na = off[std::size_t(e) + 1] - off[std::size_t(e)];
+      a = angles.data() + off[std::size_t(q)];
+      na = off[std::size_t(q) + 1] - off[std::size_t(q)];
     }
     // a zero-length edge (coincident vertices) never reaches a model's 1/l
     double v = 0.0;

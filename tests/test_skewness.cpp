@@ -228,3 +228,144 @@ TEST_CASE("angle ranges: the extremes of the angles, for two atan2 per element",
   CHECK(std::isnan(rb[0]));
   CHECK(std::isnan(rb[1]));
 }
+
+namespace {
+// The largest R and the smallest angle of a set of elements, element by
+// element from their angle ranges, as element_skewness() computes them.
+template <class Range>
+std::array<double, 2> quality_by_element(const std::vector<Range>& ranges, int dimension)
+{
+  double r = 0, a = 180;
+  for(const auto& q : ranges) {
+    r = std::max(r, spring_motion::equiangle_skewness_from_angles(q.data(), 2, dimension));
+    a = std::min(a, std::isfinite(q[0]) ? std::min(spring_motion::internal::pi, q[0]) * (180 / spring_motion::internal::pi)
+                                        : 0.0);
+  }
+  return {r, a};
+}
+} // namespace
+
+TEST_CASE("Quality_extremes: a set's largest R and smallest angle, with atan2 only where they can change, equal "
+          "the element-by-element values bitwise",
+          "[skewness][angles]")
+{
+  namespace si = spring_motion::internal;
+  std::mt19937_64 rng(20261126);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> squash(0, 4);
+  const double h = 1 / std::sqrt(2.0);
+  const std::array<std::array<double, 3>, 4> regular{{{1, 0, -h}, {-1, 0, -h}, {0, 1, h}, {0, -1, h}}};
+  std::size_t evaluated_sets = 0, swapped = 0;
+  for(int set = 0; set < 300; ++set) {
+    // near-regular sets small, so that one element's swapped extremes decide
+    const int n = 1 + int(rng() % (set % 5 == 3 ? 2 : 400));
+    std::vector<si::Extreme_angles> e3, e2;
+    std::vector<std::array<double, 2>> r3, r2;
+    // the same element moved by a rounding-sized amount many times: keys that
+    // tie or differ in the last bits, where pruning must not skip the extreme
+    std::array<std::array<double, 3>, 4> base;
+    for(auto& q : base)
+      q = {u(rng), u(rng), std::pow(10.0, -3 * squash(rng)) * u(rng)};
+    for(int i = 0; i < n; ++i) {
+      std::array<std::array<double, 3>, 4> p = base;
+      // one set in five: near-regular elements only, whose R (nearly 0) no
+      // other element's hides
+      const int kind = set % 5 == 3 ? 6 : int(rng() % 8);
+      if(kind < 3)
+        p[rng() % 4][rng() % 3] *= 1 + 1e-15 * double(rng() % 8);
+      else if(kind < 6)
+        for(auto& q : p)
+          q = {u(rng), u(rng), std::pow(10.0, -3 * squash(rng)) * u(rng)};
+      else if(kind == 6) {
+        // every angle equal but for a few units of rounding: atan2 may give
+        // the smaller value to the extreme ranked the larger
+        p = regular;
+        for(auto& q : p)
+          for(auto& x : q)
+            x *= 1 + 1e-16 * double(int(rng() % 9) - 4);
+      }
+      else if(rng() % 40 == 0)
+        p[1] = p[0]; // flat (coincident vertices): 0 and pi
+      if(set % 50 == 7 && i == n / 2)
+        p[2][0] = std::nan(""); // a coordinate that is not a number
+      e3.push_back(si::dihedral_extreme_angles(p));
+      r3.push_back(si::dihedral_angle_range(p));
+      swapped += r3.back()[0] > r3.back()[1];
+      std::array<double, 2> a{p[0][0], p[0][1]}, b{p[1][0], p[1][1]}, c{p[2][0], p[2][1]};
+      if(kind == 6) { // the equilateral triangle, as above
+        a = {0, 0};
+        b = {1, 0};
+        c = {0.5, std::sqrt(3.0) / 2};
+        for(auto* v : {&a, &b, &c})
+          for(auto& x : *v)
+            x *= 1 + 1e-16 * double(int(rng() % 9) - 4);
+      }
+      e2.push_back(si::triangle_extreme_angles<2>(a, b, c));
+      r2.push_back(si::triangle_angle_range<2>(a, b, c));
+      swapped += r2.back()[0] > r2.back()[1];
+    }
+    for(int dimension : {2, 3}) {
+      const auto& e = dimension == 2 ? e2 : e3;
+      const auto expected = quality_by_element(dimension == 2 ? r2 : r3, dimension);
+      // one accumulator, and the set split in two and merged (as threads do)
+      si::Quality_extremes whole, first, second;
+      const std::size_t split = rng() % e.size();
+      for(std::size_t i = 0; i < e.size(); ++i) {
+        whole.add(e[i]);
+        (i < split ? first : second).add(e[i]);
+      }
+      first.merge(second);
+      INFO("set " << set << ", dimension " << dimension << ", " << e.size() << " elements");
+      CHECK(whole.max_skewness(dimension) == expected[0]);
+      CHECK(whole.min_angle_deg() == expected[1]);
+      CHECK(first.max_skewness(dimension) == expected[0]);
+      CHECK(first.min_angle_deg() == expected[1]);
+      evaluated_sets += expected[1] > 0;
+    }
+  }
+  CHECK(evaluated_sets > 300); // most sets have no element that is not a number
+  CHECK(swapped > 10);          // and the swapped extremes were met
+  // found by a search: near-regular elements whose extremes atan2 returns
+  // swapped by an ulp, beside elements that are not swapped; the set's R
+  // reads the swapped element's smaller value
+  {
+    const std::array<std::array<double, 3>, 4> swapped3{{{0.99999999999999978, 0, -0.70710678118654735},
+                                                         {-1.0000000000000004, 0, -0.70710678118654746},
+                                                         {0, 0.99999999999999956, 0.70710678118654779},
+                                                         {0, -1.0000000000000002, 0.70710678118654746}}};
+    const std::array<double, 2> o{0, 0}, b{1.0000000000000002, 0}, c{0.50000000000000011, 0.86602540378443893};
+    // partners whose two extremes both equal the swapped pair's larger value
+    const std::array<std::array<double, 3>, 4> even3{{{0.99999999999999956, 0, -0.70710678118654779},
+                                                      {-1.0000000000000002, 0, -0.70710678118654757},
+                                                      {0, 1.0000000000000002, 0.70710678118654757},
+                                                      {0, -0.99999999999999989, 0.70710678118654757}}};
+    const std::array<double, 2> b1{0.99999999999999956, 0}, c1{0.49999999999999978, 0.86602540378443826};
+    REQUIRE(si::dihedral_angle_range(swapped3)[0] > si::dihedral_angle_range(swapped3)[1]);
+    REQUIRE(si::triangle_angle_range<2>(o, b, c)[0] > si::triangle_angle_range<2>(o, b, c)[1]);
+    for(int order = 0; order < 2; ++order) {
+      std::vector<std::array<std::array<double, 3>, 4>> tets{swapped3, even3};
+      std::vector<std::array<std::array<double, 2>, 3>> tris{{o, b, c}, {o, b1, c1}};
+      if(order == 1) {
+        std::swap(tets[0], tets[1]);
+        std::swap(tris[0], tris[1]);
+      }
+      si::Quality_extremes q3, q2;
+      std::vector<std::array<double, 2>> r3, r2;
+      for(const auto& p : tets) {
+        q3.add(si::dihedral_extreme_angles(p));
+        r3.push_back(si::dihedral_angle_range(p));
+      }
+      for(const auto& p : tris) {
+        q2.add(si::triangle_extreme_angles<2>(p[0], p[1], p[2]));
+        r2.push_back(si::triangle_angle_range<2>(p[0], p[1], p[2]));
+      }
+      CHECK(q3.max_skewness(3) == quality_by_element(r3, 3)[0]);
+      CHECK(q3.min_angle_deg() == quality_by_element(r3, 3)[1]);
+      CHECK(q2.max_skewness(2) == quality_by_element(r2, 2)[0]);
+      CHECK(q2.min_angle_deg() == quality_by_element(r2, 2)[1]);
+    }
+  }
+  si::Quality_extremes none;
+  CHECK(none.max_skewness(3) == 0);
+  CHECK(none.min_angle_deg() == 180);
+}

@@ -377,26 +377,34 @@ private:
   void step_quality(Step_report& s, int threads) const
   {
     const long m = long(net_.number_of_elements());
-    double r_all = 0, r_moving = 0, a_all = 180, a_moving = 180;
+    internal::Quality_extremes all, moving;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-#pragma omp parallel for schedule(static) reduction(max : r_all, r_moving, hi) reduction(min : a_all, a_moving, lo) \
-    num_threads(internal::thread_count(threads, std::size_t(m)))
-    for(long t = 0; t < m; ++t) {
-      const auto q = internal::skewness_and_smallest_angle(net_, positions_, std::size_t(t));
-      r_all = std::max(r_all, q[0]);
-      a_all = std::min(a_all, q[1]);
-      if(touches_moving_[std::size_t(t)]) {
-        r_moving = std::max(r_moving, q[0]);
-        a_moving = std::min(a_moving, q[1]);
+#pragma omp parallel num_threads(internal::thread_count(threads, std::size_t(m)))
+    {
+      internal::Quality_extremes my_all, my_moving;
+      double my_lo = lo, my_hi = hi;
+#pragma omp for schedule(static) nowait
+      for(long t = 0; t < m; ++t) {
+        const auto e = internal::element_extreme_angles(net_, positions_, std::size_t(t));
+        my_all.add(e);
+        if(touches_moving_[std::size_t(t)])
+          my_moving.add(e);
+        const double ratio = scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)];
+        my_lo = std::min(my_lo, ratio);
+        my_hi = std::max(my_hi, ratio);
       }
-      const double ratio = scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)];
-      lo = std::min(lo, ratio);
-      hi = std::max(hi, ratio);
+#pragma omp critical(spring_motion_step_quality)
+      {
+        all.merge(my_all);
+        moving.merge(my_moving);
+        lo = std::min(lo, my_lo);
+        hi = std::max(hi, my_hi);
+      }
     }
-    s.max_skewness_all = r_all;
-    s.max_skewness_moving = r_moving;
-    s.min_angle_deg_all = a_all;
-    s.min_angle_deg_moving = a_moving;
+    s.max_skewness_all = all.max_skewness(D);
+    s.max_skewness_moving = moving.max_skewness(D);
+    s.min_angle_deg_all = all.min_angle_deg();
+    s.min_angle_deg_moving = moving.min_angle_deg();
     s.min_size_ratio = lo;
     s.max_size_ratio = hi;
   }

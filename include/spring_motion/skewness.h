@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace spring_motion {
@@ -82,6 +83,109 @@ std::array<double, 2> skewness_and_smallest_angle(const Spring_network<D>& net,
   return {equiangle_skewness_from_angles(a.data(), a.size(), D),
           std::isfinite(a[0]) ? std::min(pi, a[0]) * (180 / pi) : 0.0};
 }
+} // namespace internal
+
+namespace internal {
+/// The extreme angles of element t at positions x (skewness_and_smallest_angle's).
+template <int D>
+Extreme_angles element_extreme_angles(const Spring_network<D>& net,
+                                      const std::vector<typename Spring_network<D>::Point>& x, std::size_t t)
+{
+  const auto& e = net.elements[t];
+  if constexpr(D == 2)
+    return triangle_extreme_angles<2>(x[e[0]], x[e[1]], x[e[2]]);
+  else
+    return dihedral_extreme_angles({x[e[0]], x[e[1]], x[e[2]], x[e[3]]});
+}
+
+/// The largest R and the smallest angle over a set of elements: the same
+/// numbers as the largest skewness_and_smallest_angle()[0] and the smallest
+/// [1] of its elements, with atan2 only for the elements that can change
+/// them. R is monotone in an element's extreme angles, so the set's R is the
+/// R of its smallest and its largest angle; an element whose angle key lies
+/// beyond the best key so far by more than the keys' error (angle_key)
+/// cannot be an extreme and is passed over. On the wing nearly every
+/// element is, and the pass costs half what one atan2 pair per element did.
+class Quality_extremes
+{
+public:
+  void add(const Extreme_angles& e)
+  {
+    ++count_;
+    if(!e.finite) {
+      not_a_number_ = true;
+      return;
+    }
+    if(e.direct) {
+      take(e.lo_angle, e.hi_angle);
+      return;
+    }
+    const double kl = angle_key(e.lo), kh = angle_key(e.hi);
+    // a key that is not a number (atan2(0, 0)) decides nothing; tested
+    // first, since an ordered comparison with it would raise the
+    // invalid-operation flag
+    if(std::isnan(kl) || std::isnan(kh)) {
+      take(e.lo.angle(), e.hi.angle());
+      return;
+    }
+    // nearly equal extremes may come out of atan2 swapped: R reads the min
+    // and max of both
+    if(kh - kl <= slack)
+      take(e.lo.angle(), e.hi.angle());
+    else {
+      if(kl <= min_key_ + slack) {
+        const double a = e.lo.angle();
+        smallest_ = std::min(smallest_, a);
+        r_lo_ = std::min(r_lo_, a);
+      }
+      if(kh >= max_key_ - slack)
+        r_hi_ = std::max(r_hi_, e.hi.angle());
+    }
+    min_key_ = std::min(min_key_, kl);
+    max_key_ = std::max(max_key_, kh);
+  }
+  void merge(const Quality_extremes& o)
+  {
+    count_ += o.count_;
+    not_a_number_ = not_a_number_ || o.not_a_number_;
+    smallest_ = std::min(smallest_, o.smallest_);
+    r_lo_ = std::min(r_lo_, o.r_lo_);
+    r_hi_ = std::max(r_hi_, o.r_hi_);
+    min_key_ = std::min(min_key_, o.min_key_);
+    max_key_ = std::max(max_key_, o.max_key_);
+  }
+  /// 0 for no element, 1 when an angle is not a number
+  double max_skewness(int dimension) const
+  {
+    if(count_ == 0)
+      return 0;
+    if(not_a_number_)
+      return 1;
+    const std::array<double, 2> a{r_lo_, r_hi_};
+    return equiangle_skewness_from_angles(a.data(), 2, dimension);
+  }
+  /// In degrees: 180 for no element, 0 when an angle is not a number.
+  double min_angle_deg() const
+  {
+    if(not_a_number_)
+      return 0;
+    return count_ == 0 ? 180.0 : std::min(180.0, std::min(pi, smallest_) * (180 / pi));
+  }
+
+private:
+  static constexpr double slack = 1e-12;
+  void take(double lo, double hi)
+  {
+    smallest_ = std::min(smallest_, lo);
+    r_lo_ = std::min(r_lo_, std::min(lo, hi));
+    r_hi_ = std::max(r_hi_, std::max(lo, hi));
+  }
+  std::size_t count_ = 0;
+  bool not_a_number_ = false;
+  double min_key_ = std::numeric_limits<double>::infinity(), max_key_ = -min_key_;
+  double smallest_ = min_key_;          // the smallest of the elements' smallest angles
+  double r_lo_ = min_key_, r_hi_ = -r_lo_; // what R reads: min and max over both extremes
+};
 } // namespace internal
 
 /// R of every element of the network at positions x. With `min_angle_deg`,

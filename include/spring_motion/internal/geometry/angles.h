@@ -108,24 +108,92 @@ inline std::array<double, 3> triangle_angles(const std::array<double, N>& p0, co
   return {triangle_angle<N>(0, p0, p1, p2), triangle_angle<N>(1, p0, p1, p2), triangle_angle<N>(2, p0, p1, p2)};
 }
 
+/// An angle in [0, pi] as the point (s, c) = r (sin, cos), r > 0, that
+/// atan2 reads: kept as such, angles are ranked without trigonometry.
+struct Angle_point
+{
+  double s = 0, c = 1;
+  double angle() const { return std::atan2(s, c); }
+};
+
+/// A number in [0, 2] that increases with the angle of `a`: s / (s + c) on
+/// the acute side, 2 - s / (s - c) on the obtuse one. Its rounding error is
+/// a few units of 1e-16 and its slope in the angle at least 1/2, so two
+/// angles whose keys differ by more than 1e-12 are in the keys' order.
+/// (0, 0), which atan2 reads as 0 (a triangle whose coordinates are so
+/// small that its products underflow), has no key: not a number, returned
+/// without computing 0/0, which would raise the invalid-operation flag.
+inline double angle_key(const Angle_point& a)
+{
+  if(a.s == 0 && a.c == 0)
+    return std::numeric_limits<double>::quiet_NaN();
+  return a.c >= 0 ? a.s / (a.s + a.c) : 2 - a.s / (a.s - a.c);
+}
+
+/// The smallest and the largest angle of an element (interior angles of a
+/// triangle, dihedral angles of a tetrahedron), before any atan2.
+struct Extreme_angles
+{
+  Angle_point lo, hi;
+  bool finite = true; ///< false: an angle is not a number (non-finite coordinates)
+  /// true: the angles were computed directly (a rare path), and are
+  /// lo_angle and hi_angle rather than lo and hi
+  bool direct = false;
+  double lo_angle = 0, hi_angle = 0;
+  double smallest() const { return direct ? lo_angle : lo.angle(); }
+  double largest() const { return direct ? hi_angle : hi.angle(); }
+};
+
+/// The triangle's angle at vertex k as an Angle_point: the same (s, c) as
+/// triangle_angle() hands to atan2.
+template <int N>
+inline Angle_point triangle_angle_point(int k, const std::array<double, N>& p0, const std::array<double, N>& p1,
+                                        const std::array<double, N>& p2)
+{
+  const auto& a = k == 0 ? p0 : (k == 1 ? p1 : p2);
+  const auto& b = k == 0 ? p1 : p0;
+  const auto& c = k == 2 ? p1 : p2;
+  const auto u = sub<N>(b, a), v = sub<N>(c, a);
+  if constexpr(N == 2)
+    return {std::abs(u[0] * v[1] - u[1] * v[0]), u[0] * v[0] + u[1] * v[1]};
+  else
+    return {norm<3>(cross(u, v)), dot<3>(u, v)};
+}
+
+/// The smallest and the largest of triangle_angles(), ranked by the law of
+/// sines: the angles are ordered as the lengths of the edges facing them.
+/// (Two angles that differ by a rounding error may swap; the value reported
+/// then differs by that error.) Non-finite coordinates take the full path.
+template <int N>
+inline Extreme_angles triangle_extreme_angles(const std::array<double, N>& p0, const std::array<double, N>& p1,
+                                              const std::array<double, N>& p2)
+{
+  const std::array<double, 3> facing{dot<N>(sub<N>(p1, p2), sub<N>(p1, p2)), dot<N>(sub<N>(p0, p2), sub<N>(p0, p2)),
+                                     dot<N>(sub<N>(p0, p1), sub<N>(p0, p1))};
+  Extreme_angles out;
+  if(!std::isfinite(facing[0] + facing[1] + facing[2])) {
+    const auto a = extremes(triangle_angles<N>(p0, p1, p2));
+    out.finite = std::isfinite(a[0]);
+    out.direct = true;
+    out.lo_angle = a[0];
+    out.hi_angle = a[1];
+    return out;
+  }
+  const auto mm = std::minmax_element(facing.begin(), facing.end());
+  out.lo = triangle_angle_point<N>(int(mm.first - facing.begin()), p0, p1, p2);
+  out.hi = triangle_angle_point<N>(int(mm.second - facing.begin()), p0, p1, p2);
+  return out;
+}
+
 /// The smallest and the largest of triangle_angles(), each the same number
-/// that function gives, for two atan2 instead of three: by the law of sines
-/// the angles are ordered as the lengths of the edges facing them. (Two
-/// angles that differ by a rounding error may swap; the value reported then
-/// differs by that error.) Non-finite coordinates take the full path.
+/// that function gives (see triangle_extreme_angles), for two atan2 instead
+/// of three.
 template <int N>
 inline std::array<double, 2> triangle_angle_range(const std::array<double, N>& p0, const std::array<double, N>& p1,
                                                   const std::array<double, N>& p2)
 {
-  const std::array<double, 3> facing{dot<N>(sub<N>(p1, p2), sub<N>(p1, p2)), dot<N>(sub<N>(p0, p2), sub<N>(p0, p2)),
-                                     dot<N>(sub<N>(p0, p1), sub<N>(p0, p1))};
-  if(!std::isfinite(facing[0] + facing[1] + facing[2])) {
-    const auto a = triangle_angles<N>(p0, p1, p2);
-    return extremes(a);
-  }
-  const auto mm = std::minmax_element(facing.begin(), facing.end());
-  return {triangle_angle<N>(int(mm.first - facing.begin()), p0, p1, p2),
-          triangle_angle<N>(int(mm.second - facing.begin()), p0, p1, p2)};
+  const Extreme_angles e = triangle_extreme_angles<N>(p0, p1, p2);
+  return {e.smallest(), e.largest()};
 }
 
 /// The projections u, w of tetrahedron p's two vertices off its local edge k
@@ -161,8 +229,8 @@ inline std::array<double, 6> dihedral_angles(const std::array<std::array<double,
   return out;
 }
 
-/// The smallest and the largest of dihedral_angles(), for two atan2 instead
-/// of six and no projections. With g_i the gradient of 6V with respect to
+/// The smallest and the largest of dihedral_angles() as Angle_points (for
+/// dihedral_angle_range: two atan2 instead of six, and no projections). With g_i the gradient of 6V with respect to
 /// vertex i (the cross product of face i's edges: twice its area times its
 /// normal, all four inward or all four outward), the angle at the edge of
 /// length l between faces i and j has sin = 6V l / (|g_i| |g_j|) and
@@ -174,10 +242,13 @@ inline std::array<double, 6> dihedral_angles(const std::array<std::array<double,
 /// the two extremes. The numbers agree with dihedral_angles() to rounding
 /// (tests/test_skewness.cpp, against extended precision). A flat element
 /// (6V = 0) gives 0 and pi; non-finite coordinates give not-a-number.
-inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<double, 3>, 4>& p)
+inline Extreme_angles dihedral_extreme_angles(const std::array<std::array<double, 3>, 4>& p)
 {
   using T = Simplex_tables<3>;
-  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  Extreme_angles out;
+  Extreme_angles flat; // 0 and pi
+  flat.lo = {0, 1};
+  flat.hi = {0, -1};
   std::array<std::array<double, 3>, 4> q{{{0, 0, 0}, sub<3>(p[1], p[0]), sub<3>(p[2], p[0]), sub<3>(p[3], p[0])}};
   double extent = 0, sum = 0;
   for(int v = 1; v < 4; ++v)
@@ -185,10 +256,12 @@ inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<do
       extent = std::max(extent, std::abs(q[std::size_t(v)][std::size_t(i)]));
       sum += q[std::size_t(v)][std::size_t(i)];
     }
-  if(!std::isfinite(sum))
-    return {nan, nan};
+  if(!std::isfinite(sum)) {
+    out.finite = false;
+    return out;
+  }
   if(extent == 0)
-    return {0, pi};
+    return flat;
   // scaled by the extent, so that the fourth powers below neither underflow nor overflow
   const double inv = 1.0 / extent;
   for(auto& v : q)
@@ -205,7 +278,7 @@ inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<do
     g[0][std::size_t(i)] = -(g[1][std::size_t(i)] + g[2][std::size_t(i)] + g[3][std::size_t(i)]);
   const double volume6 = std::abs(dot<3>(a, g[1]));
   if(volume6 == 0)
-    return {0, pi};
+    return flat;
   std::array<double, 6> sine, cosine, key;
   std::array<bool, 6> obtuse;
   for(std::size_t k = 0; k < 6; ++k) {
@@ -227,7 +300,19 @@ inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<do
     if(less(hi, k))
       hi = k;
   }
-  return {std::atan2(sine[lo], cosine[lo]), std::atan2(sine[hi], cosine[hi])};
+  out.lo = {sine[lo], cosine[lo]};
+  out.hi = {sine[hi], cosine[hi]};
+  return out;
+}
+
+/// The smallest and the largest of dihedral_angles() (see
+/// dihedral_extreme_angles); not a number for non-finite coordinates.
+inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<double, 3>, 4>& p)
+{
+  const Extreme_angles e = dihedral_extreme_angles(p);
+  if(!e.finite)
+    return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  return {e.lo.angle(), e.hi.angle()};
 }
 
 /// 1/sin^2 of the triangle's angle at each vertex, as triangle_angles

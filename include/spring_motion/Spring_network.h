@@ -101,15 +101,16 @@ std::uint64_t morton_code(const std::array<std::uint32_t, D>& q)
   return code;
 }
 
-/// The traversal and layout of the element angles (see Angle_slots), from
-/// the edges of the network and each slot's rank among its edge's slots.
+/// The elements in a spatial order: by the Morton code of their centroid
+/// (ties by number). Loops that gather vertices and scatter into per-edge or
+/// per-row arrays run in this order so that both stay close together in
+/// memory; in the order of a Mesh_3 or Gmsh file, neighbours in the list lie
+/// scattered through space.
 template <int D>
-void build_angle_layout(Spring_network<D>& net, const std::vector<Index>& rank)
+std::vector<Index> spatial_element_order(const Spring_network<D>& net)
 {
-  constexpr int E = Spring_network<D>::edges_per_element;
   constexpr int bits = D == 3 ? 21 : 32;
-  Angle_slots& tab = Network_access::slots(net);
-  const std::size_t m = net.elements.size(), ne = net.edges.size();
+  const std::size_t m = net.elements.size();
   std::array<double, D> lo, hi;
   lo.fill(std::numeric_limits<double>::infinity());
   hi.fill(-std::numeric_limits<double>::infinity());
@@ -134,14 +135,29 @@ void build_angle_layout(Spring_network<D>& net, const std::vector<Index>& rank)
     key[t] = {morton_code<D>(q), Index(t)};
   }
   std::sort(key.begin(), key.end());
+  std::vector<Index> order(m);
+  for(std::size_t i = 0; i < m; ++i)
+    order[i] = key[i].second;
+  return order;
+}
+
+/// The traversal and layout of the element angles (see Angle_slots), from
+/// the edges of the network and each slot's rank among its edge's slots.
+template <int D>
+void build_angle_layout(Spring_network<D>& net, const std::vector<Index>& rank)
+{
+  constexpr int E = Spring_network<D>::edges_per_element;
+  Angle_slots& tab = Network_access::slots(net);
+  const std::size_t m = net.elements.size(), ne = net.edges.size();
+  const std::vector<Index> order = spatial_element_order(net);
   // edges in the order the traversal first meets them
   constexpr Index unseen = std::numeric_limits<Index>::max();
   std::vector<Index> layout_of(ne, unseen);
   tab.layout_edge.clear();
   tab.layout_edge.reserve(ne);
-  for(const auto& k : key)
+  for(const Index t : order)
     for(int j = 0; j < E; ++j) {
-      const Index e = net.element_edges[std::size_t(k.second) * E + std::size_t(j)];
+      const Index e = net.element_edges[std::size_t(t) * E + std::size_t(j)];
       if(layout_of[e] == unseen) {
         layout_of[e] = Index(tab.layout_edge.size());
         tab.layout_edge.push_back(e);
@@ -157,7 +173,7 @@ void build_angle_layout(Spring_network<D>& net, const std::vector<Index>& rank)
   tab.ordered_elements.resize(m * (D + 1));
   tab.slot_position.resize(m * E);
   for(std::size_t i = 0; i < m; ++i) {
-    const std::size_t t = key[i].second;
+    const std::size_t t = order[i];
     for(int k = 0; k <= D; ++k)
       tab.ordered_elements[i * (D + 1) + std::size_t(k)] = net.elements[t][std::size_t(k)];
     for(int j = 0; j < E; ++j) {

@@ -532,11 +532,15 @@ private:
     for(Index c : colour)
       ++element_colour_offsets_[std::size_t(c) + 1];
     std::partial_sum(element_colour_offsets_.begin(), element_colour_offsets_.end(), element_colour_offsets_.begin());
+    // within a colour the elements go in the network's spatial order: their
+    // points and the blocks they add to then lie close together in memory
+    // (the colour's elements touch different blocks, so the values do not
+    // depend on this order)
     elements_.resize(colour.size());
     {
       std::vector<Index> next(element_colour_offsets_.begin(), element_colour_offsets_.end() - 1);
-      for(std::size_t t = 0; t < colour.size(); ++t)
-        elements_[next[colour[t]]++] = Index(t);
+      for(const Index t : spatial_element_order(net))
+        elements_[next[colour[t]]++] = t;
     }
     for(const Index t : elements_) {
       // every element, those with no free vertex too: their matrices go

@@ -5,12 +5,14 @@
 // small test meshes exercise it (the library's default cut-off is 16384).
 #define SPRING_MOTION_PARALLEL_THRESHOLD 1
 #include <spring_motion/spring_motion.h>
+#include <spring_motion/internal/solver/free_system.h>
 #include <spring_motion/internal/solver/threads.h>
 
 #include "test_meshes.h"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -236,4 +238,54 @@ TEST_CASE("thread determinism: 3D structured box, default solver and SOR, 1 vs 2
   {
     compare_threads(net, roles, motion, Solver_options{}, 2, Ball_vertex_stiffness{2.0});
   }
+}
+
+TEST_CASE("thread determinism: the element chunks of a colour share no free vertex, and cover every element once",
+          "[determinism][block]")
+{
+  // 10368 tetrahedra: about twenty chunks, several per colour
+  const auto net = small_box(12);
+  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 3>& p) {
+                                    return std::abs(p[0] - 0.5) < 0.2 && std::abs(p[1] - 0.5) < 0.2 &&
+                                           std::abs(p[2] - 0.5) < 0.2;
+                                  }));
+  std::vector<Index> free;
+  for(Index v = 0; v < net.number_of_vertices(); ++v)
+    if(roles[v] == Vertex_role::free)
+      free.push_back(v);
+  internal::Free_system<3> fs;
+  fs.build(net, free, true, Solver_options{});
+  const auto& elements = fs.assembled_elements();
+  const auto& chunks = fs.element_chunks();
+  const auto& colours = fs.element_colours();
+  REQUIRE(chunks.front() == 0);
+  REQUIRE(chunks.back() == elements.size());
+  REQUIRE(colours.back() + 1 == chunks.size());
+  std::vector<Index> sorted = elements;
+  std::sort(sorted.begin(), sorted.end());
+  for(std::size_t t = 0; t < sorted.size(); ++t)
+    REQUIRE(sorted[t] == t);
+  REQUIRE(sorted.size() == net.number_of_elements());
+  std::size_t most = 0; // chunks in the largest colour
+  std::vector<std::size_t> owner(net.number_of_vertices()); // chunk + 1 that last touched a vertex, this colour
+  for(std::size_t c = 0; c + 1 < colours.size(); ++c) {
+    std::fill(owner.begin(), owner.end(), 0);
+    most = std::max(most, std::size_t(colours[c + 1] - colours[c]));
+    for(Index h = colours[c]; h < colours[c + 1]; ++h)
+      for(Index s = chunks[h]; s < chunks[h + 1]; ++s) {
+        const Index t = elements[s];
+        CHECK(fs.assembled_element_vertices()[s] == net.elements[t]);
+        for(Index v : net.elements[t]) {
+          if(roles[v] != Vertex_role::free)
+            continue;
+          INFO("colour " << c << ", chunk " << h << ", vertex " << v);
+          CHECK((owner[v] == 0 || owner[v] == h + 1));
+          owner[v] = h + 1;
+        }
+      }
+  }
+  CHECK(most >= 2);
+  // and the assembly over those chunks, 1 vs 2 threads
+  Pitch_motion<3> motion(10, {0.5, 0.5, 0.5});
+  compare_threads(net, roles, motion, Solver_options{}, 1, Ball_vertex_stiffness{2.0});
 }

@@ -512,7 +512,7 @@ private:
       solver_.set_projectors(sliding_vertices_, sliding_projectors_);
     }
     if(block)
-      internal::assemble_block_system(net_, positions_, model, stiffness_, solver_, threads);
+      internal::assemble_block_system<D>(positions_, model, stiffness_, solver_, threads);
     else
       solver_.load_scalar(net_, stiffness_, threads);
     solver_.set_start(delta_, threads);

@@ -72,29 +72,44 @@ struct Ball_vertex_stiffness
   /// The altitude from local vertex i of tetrahedron p.
   static Altitude<3> altitude(const std::array<std::array<double, 3>, 4>& p, int i)
   {
-    std::array<int, 3> q;
-    for(int m = 0, c = 0; m < 4; ++m)
-      if(m != i)
-        q[std::size_t(c++)] = m;
-    const auto N = internal::cross(internal::sub<3>(p[q[1]], p[q[0]]), internal::sub<3>(p[q[2]], p[q[0]]));
-    const double NN = internal::dot<3>(N, N);
-    SPRING_MOTION_CHECK(NN > 0 && std::isfinite(NN), "ball-vertex springs need facets of non-zero size");
-    Altitude<3> a;
-    // b_m: the signed area of the sub-triangle facing q_m, seen from p_i,
-    // over the facet's area. The offset from the foot to p_i is parallel to
-    // N, so measuring from p_i instead of the foot changes nothing.
-    for(int m = 0; m < 3; ++m) {
-      const auto u = internal::sub<3>(p[q[std::size_t((m + 1) % 3)]], p[i]);
-      const auto v = internal::sub<3>(p[q[std::size_t((m + 2) % 3)]], p[i]);
-      a.foot[std::size_t(q[std::size_t(m)])] = internal::dot<3>(internal::cross(u, v), N) / NN;
+    return altitudes(p)[std::size_t(i)];
+  }
+
+  /// The four altitudes of tetrahedron p, from its facet normals N_i (twice
+  /// the facet's area, all pointing to the same side): with 6V = N_i . (p_i -
+  /// any vertex of facet i), the same for every i, h_i = |6V| / |N_i|, and the
+  /// foot of altitude i, p_i - (6V / |N_i|^2) N_i, has the barycentric
+  /// coordinates b_j = -N_i . N_j / |N_i|^2 (the gradients of the barycentric
+  /// functions are N_j / 6V). Ten dot products instead of three cross
+  /// products per altitude.
+  static std::array<Altitude<3>, 4> altitudes(const std::array<std::array<double, 3>, 4>& p)
+  {
+    const auto e1 = internal::sub<3>(p[1], p[0]), e2 = internal::sub<3>(p[2], p[0]), e3 = internal::sub<3>(p[3], p[0]);
+    // N_0 from its own facet's edges, not as -(N_1 + N_2 + N_3): no
+    // cancellation when facet 0 is small
+    const std::array<std::array<double, 3>, 4> N{
+        internal::cross(internal::sub<3>(p[3], p[1]), internal::sub<3>(p[2], p[1])), internal::cross(e2, e3),
+        internal::cross(e3, e1), internal::cross(e1, e2)};
+    const double six_volume = internal::dot<3>(e1, N[1]);
+    const double s = six_volume >= 0 ? 1.0 : -1.0;
+    std::array<Altitude<3>, 4> a;
+    for(std::size_t i = 0; i < 4; ++i) {
+      const double NN = internal::dot<3>(N[i], N[i]);
+      SPRING_MOTION_CHECK(NN > 0 && std::isfinite(NN), "ball-vertex springs need facets of non-zero size");
+      const double len = std::sqrt(NN);
+      for(std::size_t j = 0; j < 4; ++j)
+        a[i].foot[j] = j == i ? 0.0 : -internal::dot<3>(N[i], N[j]) / NN;
+      for(std::size_t k = 0; k < 3; ++k)
+        a[i].normal[k] = s * N[i][k] / len;
+      a[i].height = std::abs(six_volume) / len;
     }
-    const double len = std::sqrt(NN);
-    const double c = internal::dot<3>(internal::sub<3>(p[i], p[q[0]]), N) / len;
-    const double s = c >= 0 ? 1.0 : -1.0;
-    for(int k = 0; k < 3; ++k)
-      a.normal[std::size_t(k)] = s * N[std::size_t(k)] / len;
-    a.height = std::abs(c);
     return a;
+  }
+
+  /// The three altitudes of triangle p.
+  static std::array<Altitude<2>, 3> altitudes(const std::array<std::array<double, 2>, 3>& p)
+  {
+    return {altitude(p, 0), altitude(p, 1), altitude(p, 2)};
   }
 
   /// Spring stiffness of an altitude of length h.
@@ -109,11 +124,16 @@ struct Ball_vertex_stiffness
   }
 
 private:
-  // K += sum_i k_i a_i a_i^T with a_i = (n at vertex i, -b_j n at each vertex j)
+  // K += sum_i k_i a_i a_i^T with a_i = (n_i at vertex i, -b_v n_i at each
+  // other vertex v). Block (v, w) of that sum is sum_i k_i c_iv c_iw n_i n_i^T
+  // (c_ii = 1, c_iv = -b_v): symmetric and equal to block (w, v), so only
+  // the (D+1)(D+2)/2 blocks v <= w are formed, each from its D(D+1)/2
+  // distinct entries.
   template <int D>
   void add(const std::array<std::array<double, D>, D + 1>& p, double* K) const
   {
     constexpr int ND = (D + 1) * D;
+    constexpr int S = D * (D + 1) / 2;
     // The block solver inverts D x D sums of these matrices and of the edge
     // springs (up to 1/l^2): its determinant, a product of D such entries,
     // stays finite for edges longer than ~1e-50, as with torsional springs.
@@ -124,17 +144,37 @@ private:
         SPRING_MOTION_CHECK(ee >= 1e-100, "ball-vertex springs need edges longer than 1e-50 (found one of squared length "
                                               << ee << "): scale the mesh");
       }
+    const auto alt = altitudes(p);
+    std::array<std::array<double, S>, D + 1> knn; // k_i n_i n_i^T, upper triangle by rows
     for(int i = 0; i <= D; ++i) {
-      const Altitude<D> alt = altitude(p, i);
-      const double k = spring_stiffness(alt.height);
-      std::array<double, ND> a;
-      for(int v = 0; v <= D; ++v)
-        for(int c = 0; c < D; ++c)
-          a[std::size_t(v * D + c)] = (v == i ? 1.0 : -alt.foot[std::size_t(v)]) * alt.normal[std::size_t(c)];
-      for(int r = 0; r < ND; ++r)
-        for(int q = 0; q < ND; ++q)
-          K[r * ND + q] += k * a[std::size_t(r)] * a[std::size_t(q)];
+      const auto& n = alt[std::size_t(i)].normal;
+      const double k = spring_stiffness(alt[std::size_t(i)].height);
+      for(int r = 0, m = 0; r < D; ++r)
+        for(int q = r; q < D; ++q, ++m)
+          knn[std::size_t(i)][std::size_t(m)] = k * n[std::size_t(r)] * n[std::size_t(q)];
     }
+    auto c = [&](int i, int v) { return v == i ? 1.0 : -alt[std::size_t(i)].foot[std::size_t(v)]; };
+    for(int v = 0; v <= D; ++v)
+      for(int w = v; w <= D; ++w) {
+        std::array<double, S> B{};
+        for(int i = 0; i <= D; ++i) {
+          const double f = c(i, v) * c(i, w);
+          for(int m = 0; m < S; ++m)
+            B[std::size_t(m)] += f * knn[std::size_t(i)][std::size_t(m)];
+        }
+        for(int r = 0, m = 0; r < D; ++r)
+          for(int q = r; q < D; ++q, ++m) {
+            const double b = B[std::size_t(m)];
+            K[(v * D + r) * ND + w * D + q] += b;
+            if(q != r)
+              K[(v * D + q) * ND + w * D + r] += b;
+            if(w != v) {
+              K[(w * D + q) * ND + v * D + r] += b;
+              if(q != r)
+                K[(w * D + r) * ND + v * D + q] += b;
+            }
+          }
+      }
   }
 };
 

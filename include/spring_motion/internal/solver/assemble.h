@@ -146,73 +146,85 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   }
 }
 
-// Element matrices colour by colour (Free_system::element_colours): the
-// elements of a colour share no free vertex, so they are added in parallel,
-// and each block gets its contributions in colour order whatever the thread
-// count. An element whose matrix throws or is not finite stops the step with
-// the error of the first such element in network order, as a serial loop would.
+// Adds the matrix of network element t, corners p, through its (D+1)^2
+// destinations `to` (none: a constrained vertex's row); a failure is kept if
+// t is the smallest so far.
 template <int D, class Model>
-void add_element_matrices(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
-                          const Model& model, Free_system<D>& fs, int threads)
+void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const Model& model, std::size_t t,
+                        const Index* to, double* blocks, long& first_bad, std::exception_ptr& error)
 {
   constexpr int DD = D * D;
   constexpr int ND = (D + 1) * D;
+  std::array<double, ND * ND> Ke;
+  Ke.fill(0.0);
+  try {
+    model.add_element_matrix(p, Ke.data());
+    // all of it, rows of constrained vertices too: a model that breaks
+    // there breaks elsewhere on another step
+    bool finite = true;
+    for(double v : Ke)
+      finite = finite && std::isfinite(v);
+    SPRING_MOTION_ELEMENT_CHECK(finite, t, "element stiffness of element " << t << " is not finite");
+  } catch(...) {
+#pragma omp critical(spring_motion_element_matrix_error)
+    if(long(t) < first_bad) {
+      first_bad = long(t);
+      error = std::current_exception();
+    }
+    return;
+  }
+  for(int a = 0; a <= D; ++a)
+    for(int b = 0; b <= D; ++b) {
+      const Index dest = to[a * (D + 1) + b];
+      if(dest == Free_system<D>::none)
+        continue;
+      double* out = blocks + std::size_t(dest) * DD;
+      for(int r = 0; r < D; ++r)
+        for(int c = 0; c < D; ++c)
+          out[r * D + c] += Ke[std::size_t((a * D + r) * ND + (b * D + c))];
+    }
+}
+
+// Element matrices chunk by chunk (Free_system::element_chunks): the chunks
+// of a colour share no free vertex, so they are added in parallel, and each
+// block gets its contributions in the same order whatever the thread count.
+// An element whose matrix throws or is not finite stops the step with the
+// error of the first such element in network order, as a serial loop would.
+template <int D, class Model>
+void add_element_matrices(const std::vector<typename Spring_network<D>::Point>& x, const Model& model,
+                          Free_system<D>& fs, int threads)
+{
   double* blocks = fs.block_values();
   const auto& elements = fs.assembled_elements();
+  const auto& vertices = fs.assembled_element_vertices();
   const auto& dest = fs.element_destinations();
+  const auto& chunks = fs.element_chunks();
   const auto& colours = fs.element_colours();
   const int nt = internal::thread_count(threads, elements.size());
   constexpr long no_error = std::numeric_limits<long>::max();
   long first_bad = no_error; // the smallest network element whose matrix failed
   std::exception_ptr error;
   for(std::size_t c = 0; c + 1 < colours.size(); ++c) {
-    const long begin = long(colours[c]), end = long(colours[c + 1]);
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long s = begin; s < end; ++s) {
-      const std::size_t t = elements[std::size_t(s)];
-      std::array<double, ND * ND> Ke;
-      Ke.fill(0.0);
-      bool finite = true;
-      try {
-        model.add_element_matrix(element_points<D>(net.elements, x, t), Ke.data());
-        // all of it, rows of constrained vertices too: a model that breaks
-        // there breaks elsewhere on another step
-        for(double v : Ke)
-          finite = finite && std::isfinite(v);
-        SPRING_MOTION_ELEMENT_CHECK(finite, t, "element stiffness of element " << t << " is not finite");
-      } catch(...) {
-#pragma omp critical(spring_motion_element_matrix_error)
-        if(long(t) < first_bad) {
-          first_bad = long(t);
-          error = std::current_exception();
-        }
-        continue;
-      }
-      for(int a = 0; a <= D; ++a)
-        for(int b = 0; b <= D; ++b) {
-          const Index to = dest[(std::size_t(s) * (D + 1) + std::size_t(a)) * (D + 1) + std::size_t(b)];
-          if(to == Free_system<D>::none)
-            continue;
-          double* out = blocks + std::size_t(to) * DD;
-          for(int r = 0; r < D; ++r)
-            for(int cc = 0; cc < D; ++cc)
-              out[r * D + cc] += Ke[std::size_t((a * D + r) * ND + (b * D + cc))];
-        }
-    }
+    const long first = long(colours[c]), last = long(colours[c + 1]);
+#pragma omp parallel for schedule(dynamic) num_threads(nt)
+    for(long h = first; h < last; ++h)
+      for(long s = long(chunks[std::size_t(h)]); s < long(chunks[std::size_t(h) + 1]); ++s)
+        add_element_matrix<D>(element_points<D>(vertices, x, std::size_t(s)), model, elements[std::size_t(s)],
+                              &dest[std::size_t(s) * (D + 1) * (D + 1)], blocks, first_bad, error);
   }
   if(error)
     std::rethrow_exception(error);
 }
 
 /// Fills the block system `fs` (element models, or any model with sliding
-/// vertices), built for `net`, with this step's values: the edge springs (k I per coordinate, or the truss
+/// vertices), built for the network, with this step's values: the edge springs (k I per coordinate, or the truss
 /// k e e^T / |e|^2 along the edge, as `edge_spring_form(model)` says) row by
 /// row, then each element matrix scattered through the precomputed
 /// destinations; then the diagonal blocks are inverted (a singular one
 /// throws Vertex_error).
 template <int D, class Model>
-void assemble_block_system(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
-                           const Model& model, const std::vector<double>& k, Free_system<D>& fs, int threads)
+void assemble_block_system(const std::vector<typename Spring_network<D>::Point>& x, const Model& model,
+                           const std::vector<double>& k, Free_system<D>& fs, int threads)
 {
   constexpr int DD = D * D;
   const bool along_edge = edge_spring_form(model) == Edge_spring_form::along_edge;
@@ -271,7 +283,7 @@ void assemble_block_system(const Spring_network<D>& net, const std::vector<typen
       spring(bnd_edge[q], i, bnd_vertex[q], blocks + fs.bnd_block(q) * DD, diag);
   }
   if constexpr(Is_element_model<Model, D>::value)
-    add_element_matrices(net, x, model, fs, threads);
+    add_element_matrices<D>(x, model, fs, threads);
   fs.apply_projectors(threads);
   fs.finish_block_load(threads);
 }

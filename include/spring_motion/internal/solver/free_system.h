@@ -32,6 +32,8 @@ constexpr std::size_t reduction_chunk = 1024;
 /// The smallest block of the block-multicolour ordering when its width is
 /// the reverse Cuthill-McKee bandwidth (Solver_options::block_rows = 0).
 constexpr std::size_t min_block_rows = 256;
+/// Elements per chunk of the block assembly (Free_system::element_chunks).
+constexpr std::size_t element_chunk = 512;
 
 /// The spring system of one step restricted to the free vertices: the only
 /// home of a step's linear system, for scalar systems (edge models: one value
@@ -78,12 +80,19 @@ public:
   /// block systems: the elements (all), and for each of them
   /// (D+1)^2 destinations of its element matrix's blocks (a, b) in
   /// block_values() (in blocks of D*D), `none` for rows of constrained vertices.
-  /// The elements are grouped by colour: no two elements of a colour share a
-  /// free vertex, so a colour's matrices can be added in parallel, and every
-  /// block receives its contributions colour by colour, in the same order
-  /// for any thread count. Colour c is elements [element_colours()[c], [c + 1)).
+  /// The elements come in chunks of neighbours (runs of the network's spatial
+  /// order), chunk c being elements [element_chunks()[c], [c + 1)); the
+  /// chunks are grouped by colour, colour k being chunks
+  /// [element_colours()[k], [k + 1)). No two chunks of a colour share a free
+  /// vertex, so a colour's chunks can be added in parallel, each serially,
+  /// and every block receives its contributions in the same order for any
+  /// thread count.
   const std::vector<Index>& assembled_elements() const { return elements_; }
+  /// the vertices of assembled_elements(), in that order: read in sequence,
+  /// where the network's element list would be read at random
+  const std::vector<std::array<Index, D + 1>>& assembled_element_vertices() const { return element_vertices_; }
   const std::vector<Index>& element_destinations() const { return element_dest_; }
+  const std::vector<Index>& element_chunks() const { return element_chunk_offsets_; }
   const std::vector<Index>& element_colours() const { return element_colour_offsets_; }
   /// block systems: diagonal blocks (rows), then the off-diagonal blocks
   /// (nonzeros), then the blocks coupling rows to constrained vertices
@@ -162,6 +171,8 @@ public:
     }
     elements_.clear();
     element_dest_.clear();
+    element_vertices_.clear();
+    element_chunk_offsets_.clear();
     element_colour_offsets_.clear();
     val_.clear();
     bnd_val_.clear();
@@ -495,53 +506,64 @@ private:
       colour_offsets_[c + 1] += colour_offsets_[c];
   }
 
-  // Greedy colouring of the elements in their order: each takes the first
-  // colour none of the elements at its free vertices has taken.
-  std::vector<Index> element_colouring(const Spring_network<D>& net, const std::vector<Index>& row_of)
-  {
-    const std::size_t ne = net.number_of_elements();
-    std::vector<std::vector<Index>> taken(order_.size()); // per free row: colours of its elements
-    std::vector<Index> colour(ne), seen;                  // seen[c] == t + 1: c is forbidden for t
-    for(std::size_t t = 0; t < ne; ++t) {
-      for(Index v : net.elements[t])
-        if(row_of[v] != none)
-          for(Index c : taken[row_of[v]]) {
-            if(c >= seen.size())
-              seen.resize(std::size_t(c) + 1, 0);
-            seen[c] = Index(t + 1);
-          }
-      Index c = 0;
-      while(c < seen.size() && seen[c] == Index(t + 1))
-        ++c;
-      colour[t] = c;
-      for(Index v : net.elements[t])
-        if(row_of[v] != none)
-          taken[row_of[v]].push_back(c);
-    }
-    return colour;
-  }
-
-  // For every element, where each of its (D+1)^2 blocks
-  // goes: a diagonal block, an off-diagonal one, a coupling to a constrained
-  // vertex, or nowhere (a constrained vertex's row).
+  // The elements in chunks (see element_chunks) and, for every element,
+  // where each of its (D+1)^2 blocks goes: a diagonal block, an off-diagonal
+  // one, a coupling to a constrained vertex, or nowhere (a constrained
+  // vertex's row).
+  //
+  // Chunks of `element_chunk` consecutive elements of the spatial order,
+  // coloured greedily in that order: each chunk takes the first colour that
+  // no chunk at its free vertices has taken. Colouring single elements made
+  // each colour a sample of the whole mesh, so that every colour's pass went
+  // through all the blocks again (dozens of passes on a tetrahedral mesh); a
+  // chunk's elements are neighbours, and their blocks stay in cache while the
+  // chunk adds to them.
   void element_destinations(const Spring_network<D>& net, const std::vector<Index>& row_of)
   {
-    const std::vector<Index> colour = element_colouring(net, row_of);
+    const std::vector<Index> spatial = spatial_element_order(net);
+    const std::size_t ne = spatial.size(), nc = (ne + element_chunk - 1) / element_chunk;
+    std::vector<std::vector<Index>> taken(order_.size()); // per free row: colours of its chunks
+    std::vector<Index> colour(nc), seen;                  // seen[k] == c + 1: k is forbidden for chunk c
+    for(std::size_t c = 0; c < nc; ++c) {
+      const std::size_t begin = c * element_chunk, end = std::min(ne, begin + element_chunk);
+      for(std::size_t s = begin; s < end; ++s)
+        for(Index v : net.elements[spatial[s]])
+          if(row_of[v] != none)
+            for(Index k : taken[row_of[v]]) {
+              if(k >= seen.size())
+                seen.resize(std::size_t(k) + 1, 0);
+              seen[k] = Index(c + 1);
+            }
+      Index k = 0;
+      while(k < seen.size() && seen[k] == Index(c + 1))
+        ++k;
+      colour[c] = k;
+      for(std::size_t s = begin; s < end; ++s)
+        for(Index v : net.elements[spatial[s]])
+          if(row_of[v] != none && (taken[row_of[v]].empty() || taken[row_of[v]].back() != k))
+            taken[row_of[v]].push_back(k);
+    }
+    std::vector<std::vector<Index>>().swap(taken);
     const Index colours = colour.empty() ? 0 : *std::max_element(colour.begin(), colour.end()) + 1;
     element_colour_offsets_.assign(std::size_t(colours) + 1, 0);
-    for(Index c : colour)
-      ++element_colour_offsets_[std::size_t(c) + 1];
+    for(Index k : colour)
+      ++element_colour_offsets_[std::size_t(k) + 1];
     std::partial_sum(element_colour_offsets_.begin(), element_colour_offsets_.end(), element_colour_offsets_.begin());
-    // within a colour the elements go in the network's spatial order: their
-    // points and the blocks they add to then lie close together in memory
-    // (the colour's elements touch different blocks, so the values do not
-    // depend on this order)
-    elements_.resize(colour.size());
-    {
-      std::vector<Index> next(element_colour_offsets_.begin(), element_colour_offsets_.end() - 1);
-      for(const Index t : spatial_element_order(net))
-        elements_[next[colour[t]]++] = t;
+    // chunks colour by colour, in the spatial order within a colour
+    std::vector<Index> chunks(nc);
+    std::iota(chunks.begin(), chunks.end(), Index(0));
+    std::stable_sort(chunks.begin(), chunks.end(), [&](Index a, Index b) { return colour[a] < colour[b]; });
+    elements_.clear();
+    elements_.reserve(ne);
+    element_chunk_offsets_.assign(1, 0);
+    for(const Index c : chunks) {
+      const std::size_t begin = std::size_t(c) * element_chunk, end = std::min(ne, begin + element_chunk);
+      elements_.insert(elements_.end(), spatial.begin() + long(begin), spatial.begin() + long(end));
+      element_chunk_offsets_.push_back(Index(elements_.size()));
     }
+    element_vertices_.resize(ne);
+    for(std::size_t s = 0; s < ne; ++s)
+      element_vertices_[s] = net.elements[elements_[s]];
     for(const Index t : elements_) {
       // every element, those with no free vertex too: their matrices go
       // nowhere, but computing them checks the model everywhere, every step
@@ -982,7 +1004,8 @@ private:
   std::vector<Index> order_, block_offsets_, colour_offsets_; // colour_offsets_: into the blocks
   std::vector<Index> row_offsets_, col_, edge_;
   std::vector<Index> bnd_offsets_, bnd_vertex_, bnd_edge_;
-  std::vector<Index> elements_, element_dest_, element_colour_offsets_;
+  std::vector<Index> elements_, element_dest_, element_chunk_offsets_, element_colour_offsets_;
+  std::vector<std::array<Index, D + 1>> element_vertices_;
   std::vector<Index> projector_of_row_;          // empty, or one per row: into projectors_ or none
   std::vector<std::array<double, DD>> projectors_;
   std::vector<double> val_, bnd_val_, diag_, inv_diag_, blocks_, partial_;

@@ -95,13 +95,13 @@ inline double block_norm(const double* m)
   return std::sqrt(s);
 }
 
-/// s -= M x for a D x D block M.
-template <int D>
-inline void subtract_block_product(std::array<double, D>& s, const double* M, const std::array<double, D>& x)
+/// s -= M x for a D x D block M (of doubles, or of floats read as doubles).
+template <int D, class T>
+inline void subtract_block_product(std::array<double, D>& s, const T* M, const std::array<double, D>& x)
 {
   for(int r = 0; r < D; ++r)
     for(int c = 0; c < D; ++c)
-      s[r] -= M[r * D + c] * x[c];
+      s[r] -= double(M[r * D + c]) * x[c];
 }
 
 /// M x for a D x D block M.

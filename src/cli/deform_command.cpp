@@ -430,7 +430,14 @@ int run_deformer(const Deform_settings& s, Mesh_setup<D>* setup, Network_deforme
 #endif
     return state_of(deformer);
   };
-  Progress_bar bar(err, !s.quiet && (err_is_terminal || s.force_progress), s.options.number_of_steps);
+  const bool show_progress = !s.quiet && (err_is_terminal || s.force_progress);
+  Progress_bar bar(err, show_progress, s.options.number_of_steps);
+  // Each step's quality (R, smallest angle) is shown only by the progress
+  // line and the report; without either, only the final state's is (the
+  // summary line), and measuring every step costs about what computing the
+  // stiffness does.
+  Deform_options options = s.options;
+  options.quality_every_step = show_progress || !s.report_path.empty();
   Run_context context;
   context.settings = &s;
   context.bar = &bar;
@@ -450,7 +457,7 @@ int run_deformer(const Deform_settings& s, Mesh_setup<D>* setup, Network_deforme
     if(s.series)
       context.add_frame(0);
     report = with_model(s.model, [&](const auto& model) {
-      return deformer.run(motion, model, s.options, Command_visitor{&context});
+      return deformer.run(motion, model, options, Command_visitor{&context});
     });
     report.backend = s.petsc ? "petsc" : "shared";
     // the steps are over: their memory goes before the outputs take theirs

@@ -395,6 +395,12 @@ template <int D>
 }
 #endif
 
+// Whether the progress line is drawn (on stderr).
+bool shows_progress(const Deform_settings& s, bool err_is_terminal)
+{
+  return !s.quiet && (err_is_terminal || s.force_progress);
+}
+
 // Runs the motion with `deformer` and writes what the command line asks
 // for. `setup` is the file's mesh (null on the ranks of a partitioned run
 // other than 0, which hold only their part); `partitioned` is the rank's
@@ -430,14 +436,7 @@ int run_deformer(const Deform_settings& s, Mesh_setup<D>* setup, Network_deforme
 #endif
     return state_of(deformer);
   };
-  const bool show_progress = !s.quiet && (err_is_terminal || s.force_progress);
-  Progress_bar bar(err, show_progress, s.options.number_of_steps);
-  // Each step's quality (R, smallest angle) is shown only by the progress
-  // line and the report; without either, only the final state's is (the
-  // summary line), and measuring every step costs about what computing the
-  // stiffness does.
-  Deform_options options = s.options;
-  options.quality_every_step = show_progress || !s.report_path.empty();
+  Progress_bar bar(err, shows_progress(s, err_is_terminal), s.options.number_of_steps);
   Run_context context;
   context.settings = &s;
   context.bar = &bar;
@@ -457,7 +456,7 @@ int run_deformer(const Deform_settings& s, Mesh_setup<D>* setup, Network_deforme
     if(s.series)
       context.add_frame(0);
     report = with_model(s.model, [&](const auto& model) {
-      return deformer.run(motion, model, options, Command_visitor{&context});
+      return deformer.run(motion, model, s.options, Command_visitor{&context});
     });
     report.backend = s.petsc ? "petsc" : "shared";
     // the steps are over: their memory goes before the outputs take theirs
@@ -707,9 +706,19 @@ int deform_command(const std::vector<std::string>& arguments, std::ostream& out,
     return exit_success;
   }
   Deform_settings s = parse_deform(a);
+  // Each step's quality (R, smallest angle) is shown only by the progress
+  // line and the report; without either, only the final state's is (the
+  // summary line), and measuring every step costs about what computing the
+  // stiffness does.
+  s.options.quality_every_step = shows_progress(s, err_is_terminal) || !s.report_path.empty();
 #ifdef SPRING_MOTION_WITH_PETSC
   const Petsc_session petsc(s.petsc);
   try {
+    if(s.petsc) { // rank 0's choice on every rank: the parts' step reports are reduced together
+      int every = s.options.quality_every_step ? 1 : 0;
+      MPI_Bcast(&every, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+      s.options.quality_every_step = every != 0;
+    }
     if(petsc.rank() != 0) { // rank 0 reads, writes and prints; every rank reports its errors
       s.outputs.clear();
       s.report_path.clear();

@@ -137,15 +137,19 @@ inline bool aggregate_strong_neighbours(std::size_t n, const Index* offsets, con
 }
 
 /// Replaces the symmetric n x n row-major matrix a by its Cholesky factor L
-/// (lower triangle; the upper one is left as it was). The multigrids'
-/// coarsest levels are small enough for a dense factorisation.
-inline void dense_cholesky(std::vector<double>& a, std::size_t n)
+/// (lower triangle; the upper one is left as it was); false, with a
+/// half-factored, if a pivot is not above `relative` times its diagonal
+/// entry. The multigrids' coarsest levels are small enough for a dense
+/// factorisation.
+inline bool try_dense_cholesky(std::vector<double>& a, std::size_t n, double relative)
 {
   for(std::size_t j = 0; j < n; ++j) {
     double d = a[j * n + j];
+    const double own = d;
     for(std::size_t k = 0; k < j; ++k)
       d -= a[j * n + k] * a[j * n + k];
-    SPRING_MOTION_CHECK(d > 0, "multigrid: the coarsest matrix is not positive definite");
+    if(!(std::isfinite(d) && d > relative * own))
+      return false;
     const double l = std::sqrt(d);
     a[j * n + j] = l;
     for(std::size_t i = j + 1; i < n; ++i) {
@@ -155,6 +159,13 @@ inline void dense_cholesky(std::vector<double>& a, std::size_t n)
       a[i * n + j] = s / l;
     }
   }
+  return true;
+}
+
+/// The same; throws unless every pivot is positive.
+inline void dense_cholesky(std::vector<double>& a, std::size_t n)
+{
+  SPRING_MOTION_CHECK(try_dense_cholesky(a, n, 0.0), "multigrid: the coarsest matrix is not positive definite");
 }
 
 /// Solves L L^T z = b for M right-hand sides stored interleaved (b[i * M + c]

@@ -314,19 +314,32 @@ private:
   // does not feel a rotation about that line: its rotations' diagonal is then
   // singular, and their coupling to everything else zero. A tiny spring on
   // them (1e-13 of the largest diagonal entry) makes the block invertible
-  // without changing any other unknown's solution.
+  // without changing any other unknown's solution. On the next level such an
+  // aggregate's rotation is felt only through that spring, so an aggregate
+  // of two of them (3D) has a direction about 1e-13 as stiff as its
+  // diagonal, below what invert_spd_block accepts (a pivot above 1e-12 of
+  // its diagonal entry): the spring then grows to 1e-10 and, failing that,
+  // 1e-7. A stiffer spring on a nearly free direction only weakens the
+  // preconditioner there; the solution conjugate gradients converge to is
+  // the same.
   static void invert_diagonal(Level& L, std::size_t a)
   {
     double* m = &L.diag[a * RR];
     if(invert_spd_block<R>(m, &L.inv_diag[a * RR]))
       return;
     double top = 0;
-    for(int k = 0; k < R; ++k)
+    std::array<double, R> own{};
+    for(int k = 0; k < R; ++k) {
       top = std::max(top, std::abs(m[k * R + k]));
-    for(int k = D; k < R; ++k)
-      m[k * R + k] += 1e-13 * top;
-    SPRING_MOTION_CHECK(invert_spd_block<R>(m, &L.inv_diag[a * RR]),
-                        "multigrid: a coarse diagonal block is not positive definite");
+      own[k] = m[k * R + k];
+    }
+    for(const double spring : {1e-13, 1e-10, 1e-7}) {
+      for(int k = D; k < R; ++k)
+        m[k * R + k] = own[k] + spring * top;
+      if(invert_spd_block<R>(m, &L.inv_diag[a * RR]))
+        return;
+    }
+    SPRING_MOTION_CHECK(false, "multigrid: a coarse diagonal block is not positive definite");
   }
 
   void factor_coarsest()
@@ -337,16 +350,32 @@ private:
     if(L.n > parameters.max_direct_rows)
       return;
     const std::size_t n = L.n * R;
-    chol_.assign(n * n, 0.0);
+    std::vector<double> a(n * n, 0.0);
+    double top = 0;
     for(std::size_t i = 0; i < L.n; ++i)
       for(std::size_t r = 0; r < R; ++r) {
         for(std::size_t c = 0; c < R; ++c)
-          chol_[(i * R + r) * n + i * R + c] = L.diag[i * RR + r * R + c];
+          a[(i * R + r) * n + i * R + c] = L.diag[i * RR + r * R + c];
         for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
           for(std::size_t c = 0; c < R; ++c)
-            chol_[(i * R + r) * n + L.col[q] * R + c] += L.values[std::size_t(q) * RR + r * R + c];
+            a[(i * R + r) * n + L.col[q] * R + c] += L.values[std::size_t(q) * RR + r * R + c];
+        top = std::max(top, std::abs(a[(i * R + r) * n + i * R + r]));
       }
-    dense_cholesky(chol_, n);
+    chol_ = a;
+    if(try_dense_cholesky(chol_, n, 0.0))
+      return;
+    // a rotation felt only through the springs of invert_diagonal can leave
+    // the whole level a direction as nearly free: the same springs, growing,
+    // on every rotation (and the same pivot test as the diagonal blocks')
+    for(const double spring : {1e-13, 1e-10, 1e-7}) {
+      chol_ = a;
+      for(std::size_t i = 0; i < L.n; ++i)
+        for(std::size_t k = D; k < std::size_t(R); ++k)
+          chol_[(i * R + k) * n + i * R + k] += spring * top;
+      if(try_dense_cholesky(chol_, n, 1e-12))
+        return;
+    }
+    SPRING_MOTION_CHECK(false, "multigrid: the coarsest matrix is not positive definite");
   }
 
   void solve_coarsest(Level& L) const

@@ -8,7 +8,7 @@ step of the run to 30 degrees. Every run goes through `spring-motion deform`.
 
     /usr/bin/python3 scripts/models_table.py [--build build]
         [--meshes mesh3,gmsh,airfoil,mesh3_first] [--models a,b,...] [--directions +,-]
-        [--up-to DEG] [--threads T] [--out FILE] [--plan] [--figures DIR]
+        [--up-to DEG] [--threads T] [--out FILE [--merge]] [--plan] [--figures DIR]
 
 Meshes: `mesh3` is the wing demo's CGAL Mesh_3 wing (written by
 `naca0012_wing_3d --mesh-only`), `gmsh` an independent Gmsh wing of the same
@@ -20,6 +20,9 @@ degrees. The runs' JSON
 reports are kept under BUILD/models_table/ and reused, so an interrupted
 table resumes where it stopped and a model can be added later; the table
 (Markdown, written whole or not at all) says which runs it lacks. With
+--merge, FILE keeps the sections of the meshes not run this time, and the
+lines saying when and at what load its runs were made, for each set of
+runs. With
 --figures, each wing is also drawn at every model's largest positive
 amplitude (mid-span and tip cuts coloured by R, scripts/make_figures_3d.py)
 into DIR/<mesh>_wing_largest_angle_{midspan,tip}.png.
@@ -48,7 +51,10 @@ MODELS_2D = ["grid_scaled", "torsional", "ball_vertex", "ball_vertex_p2", "ball_
              "grid_scaled+ball_vertex"]
 
 MESHES = {
-    "mesh3": dict(title="Mesh_3 wing (the wing demo's default mesh: ODT, sliver bounds 20, sliver pass)",
+    "mesh3": dict(title="Mesh_3 wing (the wing demo's default mesh: ODT, sliver bounds 20, sliver pass, the "
+                        "tetrahedra in folds of the wing's surface given to the wing)",
+                  # the same mesh's section before that last pass, replaced by --merge
+                  former_titles=["Mesh_3 wing (the wing demo's default mesh: ODT, sliver bounds 20, sliver pass)"],
                   moving="wing", center="0.5,0,0", up_to=180, models=MODELS_3D, mesh_options=[]),
     "gmsh": dict(title="Gmsh wing (scripts/make_gmsh_wing.py)", moving="wing", center="0.5,0,0", up_to=180,
                  models=MODELS_3D),
@@ -186,6 +192,52 @@ def fmt(x, spec):
     return "-" if x is None else format(x, spec)
 
 
+def merged(old, new, titles):
+    """The table `old` (lines) with the sections of `new` whose titles are
+    keys of `titles` in place of its own (or of those with a title the key
+    maps to, a mesh's former title), and both tables' closing lines (when and
+    at what load each set of runs was made), the new ones naming their
+    meshes."""
+    def split(lines):
+        head, sections, tail, current = [], {}, [], None
+        order = []
+        for line in lines:
+            if line.startswith("### "):
+                current = line[4:]
+                order.append(current)
+                sections[current] = [line]
+            elif current is not None and (line.startswith("|") or line == "" and sections[current][-1].startswith("|")
+                                          or len(sections[current]) < 3):
+                sections[current].append(line)
+            elif current is None:
+                head.append(line)
+            else:
+                tail.append(line)
+        return head, order, sections, tail
+    head, order, sections, tail = split(old)
+    _, new_order, new_sections, new_tail = split(new)
+    for title in new_order:
+        if title not in titles:
+            continue
+        if title not in sections:
+            former = [t for t in titles[title] if t in sections]
+            if former:
+                order[order.index(former[0])] = title
+            else:
+                order.append(title)
+        sections[title] = new_sections[title]
+    tail = [line for line in tail if line]
+    new_tail = [line for line in new_tail if line]
+    # an earlier re-make of the same meshes: its closing lines go with it
+    prefix = f"Re-made for the {', '.join(titles)}: "
+    heads = [line[:len(prefix)] for line in tail]
+    if prefix in heads:
+        k = heads.index(prefix)
+        tail = tail[:k] + tail[k + (2 if k + 1 < len(tail) and tail[k + 1].startswith("Threads:") else 1):]
+    out = head + [line for title in order for line in sections[title]]
+    return out + tail + ([f"Re-made for the {', '.join(titles)}: " + new_tail[0]] + new_tail[1:] if new_tail else [])
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--build", default=os.path.join(REPO, "build"))
@@ -195,9 +247,13 @@ def main():
     ap.add_argument("--directions", default="+,-")
     ap.add_argument("--up-to", type=int, help="largest amplitude searched (default 180 for wings, 720 in 2D)")
     ap.add_argument("--out", help="write the table here as well (Markdown)")
+    ap.add_argument("--merge", action="store_true",
+                    help="replace in --out only the sections of the meshes run now, keeping the others")
     ap.add_argument("--plan", action="store_true", help="run nothing: print the table of the runs kept so far")
     ap.add_argument("--figures", metavar="DIR", help="draw each wing at every model's largest positive amplitude")
     args = ap.parse_args()
+    if args.merge and not (args.out and os.path.exists(args.out)):
+        raise SystemExit("models_table.py: --merge needs --out naming an existing table")
 
     build = os.path.abspath(args.build)
     cli = os.path.join(build, "src", "cli", "spring-motion")
@@ -266,9 +322,10 @@ def main():
         threads = [r[r.index("threads") + 1] for r in runs if "threads" in r]
         if threads:
             counts = ", ".join(f"{threads.count(t)} on {t} thread{'' if t == '1' else 's'}" for t in sorted(set(threads)))
-            lines.append(f"Threads: {len(runs) - len(threads)} runs before the log recorded them (spring-motion's own "
-                         f"choice: 2 threads unless it measured one faster), then {counts}; the runs on 1 thread "
-                         "were made with `--threads 1`, with up to three tables running side by side.")
+            before = (f"{len(runs) - len(threads)} runs before the log recorded them (spring-motion's own choice: 2 "
+                      "threads unless it measured one faster), then " if len(runs) > len(threads) else "")
+            lines.append(f"Threads: {before}{counts}; the runs on 1 thread were made with `--threads 1`, other runs "
+                         "sharing the 2 cores as the load says.")
     if runner.missing:
         lines.append(f"(At least {runner.missing} {'run is' if runner.missing == 1 else 'runs are'} not made yet: the "
                      "rows they decide say 'not run' or 'search not finished'.)")
@@ -276,6 +333,9 @@ def main():
         for name, runs in largest_positive.items():
             if name != "airfoil":
                 draw_at_largest(name, mesh_file(name, build, work), runs, cli, work, args.figures)
+    if args.merge:
+        lines = merged(open(args.out).read().split("\n"), lines,
+                       {MESHES[name]["title"]: MESHES[name].get("former_titles", []) for name in args.meshes.split(",")})
     text = "\n".join(lines) + "\n"
     sys.stdout.write(text)
     if args.out:

@@ -4,6 +4,7 @@
 #define SPRING_MOTION_TESTS_TEST_MESHES_H
 
 #include <naca0012/Naca0012_mesh_2.h>
+#include <naca0012/Naca0012_wing_mesh_3.h>
 #include <spring_motion/spring_motion.h>
 
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
@@ -84,6 +85,24 @@ inline Naca0012_network naca0012_network()
                                           return spring_motion::is_on_naca0012_airfoil(p[0], p[1]);
                                         }));
   return n;
+}
+
+// A coarse Mesh_3 wing (about 6000 tetrahedra, meshed in about a second):
+// smaller sizes, a near far field, none of the optimisers, so it keeps many
+// of Mesh_3's slivers and small aggregates
+inline spring_motion::Naca0012_wing_mesh_3_options coarse_wing_options()
+{
+  spring_motion::Naca0012_wing_mesh_3_options o;
+  o.section_intervals = 40;
+  o.span_intervals = 10;
+  o.sphere_subdivisions = 2;
+  o.far_field_radius = 4;
+  o.size_at_wing = 0.2;
+  o.size_at_trailing_edge = 0.1;
+  o.size_growth = 0.6;
+  o.odt_iterations = 0;
+  o.sliver_smoothing_bound = 0;
+  return o;
 }
 
 // [0,n]^D cut into simplices (Kuhn: each cell along the permutations of its

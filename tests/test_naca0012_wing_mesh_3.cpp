@@ -6,6 +6,8 @@
 #include <naca0012/Naca0012_wing_mesh_3.h>
 #include <spring_motion/internal/geometry/angles.h>
 
+#include "test_meshes.h"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -134,16 +136,7 @@ double smallest_dihedral_deg(const Indexed_mesh<3>& m, const Element& e)
 TEST_CASE("wing mesh: tetrahedra in folds of the wing's surface are given to the wing", "[mesh_3][wing]")
 {
   // coarse and without the optimisers, so Mesh_3 is short and leaves many
-  Naca0012_wing_mesh_3_options o;
-  o.section_intervals = 40;
-  o.span_intervals = 10;
-  o.sphere_subdivisions = 2;
-  o.far_field_radius = 4;
-  o.size_at_wing = 0.2;
-  o.size_at_trailing_edge = 0.1;
-  o.size_growth = 0.6;
-  o.odt_iterations = 0;
-  o.sliver_smoothing_bound = 0;
+  Naca0012_wing_mesh_3_options o = spring_motion_test::coarse_wing_options();
   o.wing_sliver_bound = 0;
   const Indexed_mesh<3> before = naca0012_wing_mesh_3(o);
   Indexed_mesh<3> m = before;

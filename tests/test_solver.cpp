@@ -6,7 +6,6 @@
 #include <spring_motion/spring_motion.h>
 
 #include "test_meshes.h"
-#include <naca0012/Naca0012_wing_mesh_3.h>
 
 #include <catch2/catch.hpp>
 
@@ -262,17 +261,7 @@ TEST_CASE("solvers: SOR and conjugate gradients match a direct sparse solve", "[
 // Gauss-Seidel alone (no coarse levels) reach.
 TEST_CASE("solvers: 3D block systems whose multigrid has nearly free rotations converge", "[solver][block][multigrid]")
 {
-  Naca0012_wing_mesh_3_options mo;
-  mo.section_intervals = 40;
-  mo.span_intervals = 10;
-  mo.sphere_subdivisions = 2;
-  mo.far_field_radius = 4;
-  mo.size_at_wing = 0.2;
-  mo.size_at_trailing_edge = 0.1;
-  mo.size_growth = 0.6;
-  mo.odt_iterations = 0;
-  mo.sliver_smoothing_bound = 0;
-  const auto mesh = naca0012_wing_mesh_3(mo);
+  const auto mesh = naca0012_wing_mesh_3(coarse_wing_options());
   const auto net = make_spring_network<3>(mesh.points, mesh.elements);
   const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 3>& p) {
                                     return is_on_naca0012_wing(p[0], p[1], p[2]);

@@ -235,7 +235,7 @@ def merged(old, new, titles):
         k = heads.index(prefix)
         tail = tail[:k] + tail[k + (2 if k + 1 < len(tail) and tail[k + 1].startswith("Threads:") else 1):]
     out = head + [line for title in order for line in sections[title]]
-    return out + tail + ([f"Re-made for the {', '.join(titles)}: " + new_tail[0]] + new_tail[1:] if new_tail else [])
+    return out + tail + ([prefix + new_tail[0]] + new_tail[1:] if new_tail else [])
 
 
 def main():

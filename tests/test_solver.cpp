@@ -4,6 +4,7 @@
 // systems; and the paper's max-change criterion (Eq. 12) stopping while the
 // true error is still far above its tolerance.
 #include <spring_motion/spring_motion.h>
+#include <spring_motion/internal/solver/assemble.h>
 
 #include "test_meshes.h"
 
@@ -12,6 +13,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -532,4 +534,126 @@ TEMPLATE_TEST_CASE_SIG("solvers: a single free vertex converges in one conjugate
   const double x = p0[centre][0] - centre_of_rotation[0], y = p0[centre][1] - centre_of_rotation[1];
   CHECK(mesh.points[centre][0] == Approx(centre_of_rotation[0] + std::cos(a) * x - std::sin(a) * y).margin(1e-12));
   CHECK(mesh.points[centre][1] == Approx(centre_of_rotation[1] + std::sin(a) * x + std::cos(a) * y).margin(1e-12));
+}
+
+// The conjugate-gradient solves' preconditioner on the system it is built
+// for, against its definition. Symmetric Gauss-Seidel (SSOR): a forward then
+// a backward sweep from zero in the solver's row order, computed here row by
+// row from the matrix the solver holds (a block system's sweeps read its
+// off-diagonal blocks rounded to float, and so does the reference); with the
+// multigrid the preconditioner must stay symmetric and positive definite.
+// Several blocks of rows per colour, so that the parallel sweeps' order is
+// the row order only through the colouring.
+TEST_CASE("solvers: the preconditioner is the symmetric Gauss-Seidel of the solver's order, and symmetric with "
+          "the multigrid",
+          "[solver][preconditioner]")
+{
+  CDT cdt;
+  make_annulus(cdt);
+  const auto net = extract_spring_network(cdt).network;
+  const auto roles = assign_roles(net, moving_boundary_where([](const P2& p) { return std::hypot(p[0], p[1]) < 1.0; }));
+  std::vector<Index> free;
+  for(Index i = 0; i < Index(net.number_of_vertices()); ++i)
+    if(roles[i] == Vertex_role::free)
+      free.push_back(i);
+  REQUIRE(free.size() > 100);
+  const auto positions = net.points;
+
+  const bool block = GENERATE(false, true);
+  INFO((block ? "2x2-block system (ball-vertex springs, k = 1/h^2)" : "scalar system (lineal springs)"));
+  Solver_options o;
+  o.threads = GENERATE(1, 2);
+  o.block_rows = 16;
+  internal::Free_system<2> fs;
+  fs.build(net, free, block, o);
+  REQUIRE(fs.blocks() > 2 * fs.colours());
+  std::vector<double> k(net.number_of_edges());
+  if(block) {
+    std::fill(k.begin(), k.end(), 0.0); // no edge springs
+    internal::assemble_block_system<2>(positions, Ball_vertex_stiffness{2.0}, k, fs, o.threads);
+  } else {
+    for(std::size_t e = 0; e < k.size(); ++e)
+      k[e] = 1.0 + double(e % 5);
+    fs.load_scalar(net, k, o.threads);
+  }
+  fs.set_positions(positions);
+  const std::size_t n = fs.rows();
+  const std::size_t w = block ? 4 : 1;
+  const Index* off = fs.row_offsets().data();
+  const Index* col = fs.columns().data();
+  // entry (k, c, j, d) of block (or value) q, as the sweeps read it
+  auto entry = [&](const double* v, std::size_t q, int c, int d) {
+    return block ? double(float(v[q * w + std::size_t(2 * c + d)])) : (c == d ? v[q] : 0.0);
+  };
+  auto diagonal_solve = [&](std::size_t r, const P2& s) {
+    const double* m = fs.diagonal() + r * w;
+    if(!block)
+      return P2{s[0] / m[0], s[1] / m[0]};
+    const double det = m[0] * m[3] - m[1] * m[2];
+    return P2{(m[3] * s[0] - m[1] * s[1]) / det, (m[0] * s[1] - m[2] * s[0]) / det};
+  };
+  auto ssor = [&](const std::vector<P2>& r, double omega) {
+    std::vector<P2> z(n, P2{0, 0});
+    auto update = [&](std::size_t row) {
+      P2 s = r[row];
+      for(Index q = off[row]; q < off[row + 1]; ++q)
+        for(int c = 0; c < 2; ++c)
+          for(int d = 0; d < 2; ++d)
+            s[std::size_t(c)] -= entry(fs.values(), q, c, d) * z[col[q]][std::size_t(d)];
+      const P2 y = diagonal_solve(row, s);
+      for(int c = 0; c < 2; ++c)
+        z[row][std::size_t(c)] = (1 - omega) * z[row][std::size_t(c)] + omega * y[std::size_t(c)];
+    };
+    for(std::size_t row = 0; row < n; ++row)
+      update(row);
+    for(std::size_t row = n; row-- > 0;)
+      update(row);
+    return z;
+  };
+  std::vector<P2> r1(n), r2(n);
+  for(std::size_t row = 0; row < n; ++row) {
+    r1[row] = {std::sin(1.0 + 3.0 * double(row)), std::cos(0.5 * double(row))};
+    r2[row] = {std::cos(2.0 + double(row)), std::sin(0.7 * double(row) - 1.0)};
+  }
+  auto largest = [](const std::vector<P2>& z) {
+    double m = 0;
+    for(const auto& v : z)
+      m = std::max({m, std::abs(v[0]), std::abs(v[1])});
+    return m;
+  };
+  auto dot = [](const std::vector<P2>& a, const std::vector<P2>& b) {
+    double s = 0;
+    for(std::size_t row = 0; row < a.size(); ++row)
+      s += a[row][0] * b[row][0] + a[row][1] * b[row][1];
+    return s;
+  };
+
+  SECTION("symmetric Gauss-Seidel and SSOR")
+  {
+    o.preconditioner = Preconditioner::symmetric_gauss_seidel;
+    for(const double omega : {1.0, 1.3}) {
+      o.preconditioner_relaxation_factor = omega;
+      const auto z = fs.preconditioned(r1, o);
+      const auto ref = ssor(r1, omega);
+      double error = 0;
+      for(std::size_t row = 0; row < n; ++row)
+        for(int c = 0; c < 2; ++c)
+          error = std::max(error, std::abs(z[row][std::size_t(c)] - ref[row][std::size_t(c)]));
+      INFO("omega " << omega << ": max |z - reference| " << error << ", max |z| " << largest(ref));
+      CHECK(largest(ref) > 1e-3);
+      CHECK(error <= 1e-12 * largest(ref));
+    }
+  }
+  SECTION("multigrid: symmetric, positive definite")
+  {
+    o.preconditioner = Preconditioner::multigrid;
+    const auto z1 = fs.preconditioned(r1, o);
+    const auto z2 = fs.preconditioned(r2, o);
+    REQUIRE((block ? fs.rigid_body_multigrid().number_of_levels() : fs.multigrid().number_of_levels()) > 0);
+    const double a = dot(r2, z1), b = dot(r1, z2);
+    INFO("r2 . M r1 = " << a << ", r1 . M r2 = " << b);
+    CHECK(std::abs(a - b) <= 1e-12 * std::sqrt(dot(r1, z1) * dot(r2, z2)));
+    CHECK(dot(r1, z1) > 0);
+    CHECK(dot(r2, z2) > 0);
+  }
 }

@@ -154,17 +154,31 @@ public:
     edge_.clear();
     bnd_vertex_.clear();
     bnd_edge_.clear();
+    // Each row's free neighbours before it in the solver's order first, then
+    // those after it (upper_offsets_), each part in network order: a forward
+    // sweep from zero reads only the first part, and the residual it leaves
+    // only the second (precondition).
+    upper_offsets_.assign(nf, 0);
+    std::vector<std::pair<Index, Index>> later;
     for(std::size_t r = 0; r < nf; ++r) {
       const Index i = order_[r];
+      later.clear();
       for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p) {
         const Index j = net.adjacency[p];
-        if(row_of[j] != none) {
+        if(row_of[j] == none) {
+          bnd_vertex_.push_back(j);
+          bnd_edge_.push_back(net.adjacency_edge[p]);
+        } else if(row_of[j] < r) {
           col_.push_back(row_of[j]);
           edge_.push_back(net.adjacency_edge[p]);
         } else {
-          bnd_vertex_.push_back(j);
-          bnd_edge_.push_back(net.adjacency_edge[p]);
+          later.emplace_back(row_of[j], net.adjacency_edge[p]);
         }
+      }
+      upper_offsets_[r] = Index(col_.size());
+      for(const auto& [c, e] : later) {
+        col_.push_back(c);
+        edge_.push_back(e);
       }
       row_offsets_[r + 1] = Index(col_.size());
       bnd_offsets_[r + 1] = Index(bnd_vertex_.size());
@@ -395,6 +409,21 @@ public:
     return block_ ? solve_conjugate_gradient<true>(options) : solve_conjugate_gradient<false>(options);
   }
 
+  /// M^{-1} r for the loaded system (rows in the solver's order), M the
+  /// preconditioner of a conjugate-gradient solve under `options`: for
+  /// checking it against its definition.
+  std::vector<Row> preconditioned(const std::vector<Row>& r, const Solver_options& options)
+  {
+    SPRING_MOTION_CHECK(r.size() == order_.size(), "preconditioned: " << r.size() << " rows for " << order_.size());
+    r_ = r;
+    z_.resize(r.size());
+    if(block_)
+      apply_preconditioner<true>(load_preconditioner<true>(options), options);
+    else
+      apply_preconditioner<false>(load_preconditioner<false>(options), options);
+    return z_;
+  }
+
   /// The multigrid levels of the last multigrid-preconditioned solve: of a
   /// scalar system, and of a block system.
   const Aggregation_multigrid<D>& multigrid() const { return multigrid_; }
@@ -595,17 +624,18 @@ private:
                         "too many stiffness blocks for 32-bit indices");
   }
 
-  // s = rhs_k - sum over the row's off-diagonal entries of A_kj x_j, the
-  // entries read from `off` (values(), or their single-precision copy)
+  // s = rhs_k - sum over the row's off-diagonal entries [row_offsets_[k],
+  // end) of A_kj x_j, the entries read from `off` (values(), or their
+  // single-precision copy)
   template <bool B, class V>
-  Row off_residual(const std::vector<Row>& x, const Row& rhs, std::size_t k, const V* off) const
+  Row off_residual(const std::vector<Row>& x, const Row& rhs, std::size_t k, Index end, const V* off) const
   {
     Row s = rhs;
     if constexpr(B) {
-      for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q)
+      for(Index q = row_offsets_[k]; q < end; ++q)
         subtract_block_product<D>(s, off + std::size_t(q) * DD, x[col_[q]]);
     } else {
-      for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q) {
+      for(Index q = row_offsets_[k]; q < end; ++q) {
         const double v = double(off[q]);
         const Row& xj = x[col_[q]];
         for(int c = 0; c < D; ++c)
@@ -642,14 +672,37 @@ private:
     }
   }
 
+  // A backward sweep reads the rows from the last to the first but each
+  // row's entries upwards, a pattern the hardware prefetcher does not follow:
+  // a 3D block system's backward sweep took three times its forward one.
+  // The values of the row this many rows ahead are requested explicitly
+  // (no arithmetic changes).
+  static constexpr std::size_t backward_prefetch_rows = 8;
+
+  template <bool B, class V>
+  void prefetch_row(const V* off, std::size_t k) const
+  {
+#if defined(__GNUC__)
+    constexpr std::size_t w = B ? DD : 1;
+    const char* a = reinterpret_cast<const char*>(off + std::size_t(row_offsets_[k]) * w);
+    const char* e = reinterpret_cast<const char*>(off + std::size_t(row_offsets_[k + 1]) * w);
+    for(; a < e; a += 64)
+      __builtin_prefetch(a);
+#else
+    (void)off;
+    (void)k;
+#endif
+  }
+
   // Gauss-Seidel over the colours in order, rows in order within a block
   // (backward: all in reverse), the blocks of a colour in parallel: a block
   // reads only its own rows and rows of other colours, so any schedule gives
   // the same result. `off`: the off-diagonal entries (see off_residual).
-  // `track`: return the max change.
+  // `track`: return the max change. `from_zero` (forward only): x is zero,
+  // so the rows after each row, still zero when it is updated, are not read.
   template <bool B, class V>
   double sweep(std::vector<Row>& x, const std::vector<Row>& rhs, const V* off, double omega, int threads,
-               bool forward, bool track = true)
+               bool forward, bool track = true, bool from_zero = false)
   {
     const int nt = team(threads);
     const std::size_t nc = colours();
@@ -663,7 +716,9 @@ private:
         const long rb = long(block_offsets_[std::size_t(bq)]), re = long(block_offsets_[std::size_t(bq) + 1]);
         for(long kk = 0; kk < re - rb; ++kk) {
           const std::size_t K = std::size_t(forward ? rb + kk : re - 1 - kk);
-          const Row s = off_residual<B>(x, rhs[K], K, off);
+          if(!forward && K >= backward_prefetch_rows)
+            prefetch_row<B>(off, K - backward_prefetch_rows);
+          const Row s = off_residual<B>(x, rhs[K], K, from_zero ? upper_offsets_[K] : row_offsets_[K + 1], off);
           Row y;
           if constexpr(B) // the block row's local solve D_K^{-1} s, relaxed
             y = block_product<D>(&inv_diag_[K * DD], s);
@@ -738,35 +793,10 @@ private:
     const double r_max = max_abs(r_, threads);
     SPRING_MOTION_CHECK(std::isfinite(r_max), "the solver's initial residual is not finite");
     Stopping_test stop(options);
-    const bool mg = options.preconditioner == Preconditioner::multigrid;
-    multigrid_.parameters.correction = options.multigrid_correction; // used per cycle only
-    rigid_.parameters.correction = options.multigrid_correction;
-    if(mg && r_max > 0 && nf > 0) {
-      const Csr_view fine{order_.size(), row_offsets_.data(), col_.data(), values(), diagonal(), B};
-      if constexpr(B) {
-        SPRING_MOTION_CHECK(positions_ && positions_->size() > *std::max_element(order_.begin(), order_.end()),
-                            "the block system's multigrid needs the vertices' positions (set_positions)");
-        row_points_.resize(order_.size());
-        for(std::size_t r = 0; r < order_.size(); ++r)
-          row_points_[r] = (*positions_)[order_[r]];
-        if(!rigid_.built())
-          rigid_.build(fine, row_points_.data());
-        rigid_.load(fine, row_points_.data());
-      } else {
-        if(!multigrid_.built())
-          multigrid_.build(fine);
-        multigrid_.load(fine);
-      }
-    }
-    const bool cycle = mg && (B ? rigid_.number_of_levels() : multigrid_.number_of_levels()) > 0;
-    const bool single = B && r_max > 0 && nf > 0 && prepare_single_smoother(threads);
-    auto precondition = [&] {
-      const double omega = options.preconditioner_relaxation_factor;
-      if constexpr(B)
-        if(single)
-          return this->precondition<B>(single_off_.data(), omega, threads, cycle);
-      this->precondition<B>(values(), omega, threads, cycle);
-    };
+    Preconditioner_state pc;
+    if(r_max > 0 && nf > 0)
+      pc = load_preconditioner<B>(options);
+    auto precondition = [&] { apply_preconditioner<B>(pc, options); };
     if(r_max > 0 && nf > 0) {
       precondition();
       copy(z_, p_, threads);
@@ -806,6 +836,54 @@ private:
     return report;
   }
 
+  // What the preconditioner of a solve reads: the multigrid's coarse
+  // levels (`cycle`) and the sweeps' single-precision entries (`single`).
+  struct Preconditioner_state
+  {
+    bool cycle = false, single = false;
+  };
+
+  // Loads the preconditioner `options` select for the loaded system.
+  template <bool B>
+  Preconditioner_state load_preconditioner(const Solver_options& options)
+  {
+    const bool mg = options.preconditioner == Preconditioner::multigrid;
+    multigrid_.parameters.correction = options.multigrid_correction; // used per cycle only
+    rigid_.parameters.correction = options.multigrid_correction;
+    if(mg) {
+      const Csr_view fine{order_.size(), row_offsets_.data(), col_.data(), values(), diagonal(), B};
+      if constexpr(B) {
+        SPRING_MOTION_CHECK(positions_ && positions_->size() > *std::max_element(order_.begin(), order_.end()),
+                            "the block system's multigrid needs the vertices' positions (set_positions)");
+        row_points_.resize(order_.size());
+        for(std::size_t r = 0; r < order_.size(); ++r)
+          row_points_[r] = (*positions_)[order_[r]];
+        if(!rigid_.built())
+          rigid_.build(fine, row_points_.data());
+        rigid_.load(fine, row_points_.data());
+      } else {
+        if(!multigrid_.built())
+          multigrid_.build(fine);
+        multigrid_.load(fine);
+      }
+    }
+    Preconditioner_state pc;
+    pc.cycle = mg && (B ? rigid_.number_of_levels() : multigrid_.number_of_levels()) > 0;
+    pc.single = B && prepare_single_smoother(options.threads);
+    return pc;
+  }
+
+  // z_ = M^{-1} r_
+  template <bool B>
+  void apply_preconditioner(const Preconditioner_state& pc, const Solver_options& options)
+  {
+    const double omega = options.preconditioner_relaxation_factor;
+    if constexpr(B)
+      if(pc.single)
+        return precondition<B>(single_off_.data(), omega, options.threads, pc.cycle);
+    precondition<B>(values(), omega, options.threads, pc.cycle);
+  }
+
   // z = M^{-1} r from z = 0: a forward sweep on A z = r, with `multigrid`
   // the coarse correction of the residual left, and a backward sweep. Without
   // it M is the symmetric Gauss-Seidel (SSOR for omega != 1) splitting of A in
@@ -829,7 +907,7 @@ private:
 #pragma omp parallel for schedule(static) num_threads(nt)
     for(long k = 0; k < nf; ++k)
       z_[std::size_t(k)] = Row{};
-    sweep<B>(z_, r_, off, omega, threads, true, false);
+    sweep<B>(z_, r_, off, omega, threads, true, false, true);
     if(multigrid)
       coarse_correction<B>(off, threads, omega == 1);
     sweep<B>(z_, r_, off, omega, threads, false, false);
@@ -863,7 +941,7 @@ private:
   // sweep from z = 0 (`after_gauss_seidel`), row k's equation holds with the
   // rows after it still at zero, so r - A z is -(sum over j > k of A_kj z_j):
   // the rows are numbered in sweep order (the rows of other blocks of k's
-  // colour are not its neighbours), and half the matrix is read.
+  // colour are not its neighbours), and only each row's upper part is read.
   template <bool B, class V>
   void coarse_correction(const V* off, int threads, bool after_gauss_seidel)
   {
@@ -874,10 +952,8 @@ private:
 #pragma omp parallel for schedule(static) num_threads(nt)
       for(long k = 0; k < nf; ++k) {
         Row s{};
-        for(Index q = row_offsets_[std::size_t(k)]; q < row_offsets_[std::size_t(k) + 1]; ++q) {
+        for(Index q = upper_offsets_[std::size_t(k)]; q < row_offsets_[std::size_t(k) + 1]; ++q) {
           const Index j = col_[q];
-          if(long(j) <= k)
-            continue;
           if constexpr(B)
             subtract_block_product<D>(s, off + std::size_t(q) * DD, z_[j]);
           else
@@ -1046,7 +1122,7 @@ private:
   std::vector<Index> free_;
 
   std::vector<Index> order_, block_offsets_, colour_offsets_; // colour_offsets_: into the blocks
-  std::vector<Index> row_offsets_, col_, edge_;
+  std::vector<Index> row_offsets_, upper_offsets_, col_, edge_; // upper_offsets_: see build
   std::vector<Index> bnd_offsets_, bnd_vertex_, bnd_edge_;
   std::vector<Index> elements_, element_dest_, element_chunk_offsets_, element_colour_offsets_;
   std::vector<std::array<Index, D + 1>> element_vertices_;

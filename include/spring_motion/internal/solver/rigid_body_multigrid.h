@@ -322,6 +322,8 @@ private:
   // 1e-7. A stiffer spring on a nearly free direction only weakens the
   // preconditioner there; the solution conjugate gradients converge to is
   // the same.
+  static constexpr std::array<double, 3> rotation_springs{1e-13, 1e-10, 1e-7};
+
   static void invert_diagonal(Level& L, std::size_t a)
   {
     double* m = &L.diag[a * RR];
@@ -333,7 +335,7 @@ private:
       top = std::max(top, std::abs(m[k * R + k]));
       own[k] = m[k * R + k];
     }
-    for(const double spring : {1e-13, 1e-10, 1e-7}) {
+    for(const double spring : rotation_springs) {
       for(int k = D; k < R; ++k)
         m[k * R + k] = own[k] + spring * top;
       if(invert_spd_block<R>(m, &L.inv_diag[a * RR]))
@@ -365,9 +367,9 @@ private:
     if(try_dense_cholesky(chol_, n, 0.0))
       return;
     // a rotation felt only through the springs of invert_diagonal can leave
-    // the whole level a direction as nearly free: the same springs, growing,
-    // on every rotation (and the same pivot test as the diagonal blocks')
-    for(const double spring : {1e-13, 1e-10, 1e-7}) {
+    // the whole level a direction as nearly free: the same springs
+    // (rotation_springs), growing, on every rotation (and the same pivot test as the diagonal blocks')
+    for(const double spring : rotation_springs) {
       chol_ = a;
       for(std::size_t i = 0; i < L.n; ++i)
         for(std::size_t k = D; k < std::size_t(R); ++k)

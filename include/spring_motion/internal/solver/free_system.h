@@ -415,6 +415,8 @@ public:
   std::vector<Row> preconditioned(const std::vector<Row>& r, const Solver_options& options)
   {
     SPRING_MOTION_CHECK(r.size() == order_.size(), "preconditioned: " << r.size() << " rows for " << order_.size());
+    if(r.empty()) // no free vertex: nothing to load
+      return {};
     r_ = r;
     z_.resize(r.size());
     if(block_)

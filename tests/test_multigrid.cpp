@@ -13,6 +13,7 @@
 #include <spring_motion/internal/solver/rigid_body_multigrid.h>
 
 #include "test_meshes.h"
+#include "test_operators.h"
 
 #include <catch2/catch.hpp>
 
@@ -81,8 +82,6 @@ Laplacian spring_laplacian(const Spring_network<2>& net, const std::vector<Verte
   return L;
 }
 
-using Vec = std::vector<std::array<double, 2>>;
-
 // y = A x on a level
 Vec multiply(const Csr_view& a, const Vec& x)
 {
@@ -106,14 +105,6 @@ Vec multiply(const Csr_view& a, const Vec& x)
   return y;
 }
 
-double dot(const Vec& a, const Vec& b)
-{
-  double s = 0;
-  for(std::size_t i = 0; i < a.size(); ++i)
-    s += a[i][0] * b[i][0] + a[i][1] * b[i][1];
-  return s;
-}
-
 // u -> P M_c^{-1} P^T u on the fine level
 Vec coarse_correction(Aggregation_multigrid<2>& mg, const Vec& u)
 {
@@ -123,27 +114,6 @@ Vec coarse_correction(Aggregation_multigrid<2>& mg, const Vec& u)
   for(std::size_t i = 0; i < u.size(); ++i)
     z[i] = mg.coarse_solution(mg.parent(i));
   return z;
-}
-
-// T symmetric (<Tu, v> = <u, Tv>) and positive (<Tu, u> > 0) on random
-// vectors of `rows` rows: T a coarse correction u -> P M_c^{-1} P^T u
-template <class Correction>
-void check_symmetric_positive(const Correction& T, std::size_t rows, unsigned seed)
-{
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-1, 1);
-  for(int trial = 0; trial < 5; ++trial) {
-    Vec u(rows), v(rows);
-    for(std::size_t i = 0; i < rows; ++i) {
-      u[i] = {d(rng), d(rng)};
-      v[i] = {d(rng), d(rng)};
-    }
-    const Vec Tu = T(u), Tv = T(v);
-    const double a = dot(Tu, v), b = dot(u, Tv);
-    INFO("<Tu, v> = " << a << ", <u, Tv> = " << b);
-    CHECK(std::abs(a - b) <= 1e-10 * std::sqrt(dot(Tu, Tu) * dot(v, v)));
-    CHECK(dot(Tu, u) > 0);
-  }
 }
 
 struct Setup

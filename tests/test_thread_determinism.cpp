@@ -15,8 +15,12 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 using namespace spring_motion;
@@ -288,4 +292,111 @@ TEST_CASE("thread determinism: the element chunks of a colour share no free vert
   // and the assembly over those chunks, 1 vs 2 threads
   Pitch_motion<3> motion(10, {0.5, 0.5, 0.5});
   compare_threads(net, roles, motion, Solver_options{}, 1, Ball_vertex_stiffness{2.0});
+}
+
+TEST_CASE("thread determinism: check_input_mesh finds the problems a direct search finds, on 1 and 2 threads",
+          "[threads][validity][check]")
+{
+  auto mesh = kuhn_grid<3>(5);
+  // plant problems: an interior vertex pushed through a neighbour (inverted
+  // and overlapping elements), a flat element, a facet in three elements
+  mesh.points[std::size_t(1 + 6 + 36)] = {1.0, 1.0, 2.6};
+  mesh.elements.push_back({0, 1, 6, 7}); // four corners of the face z = 0
+  mesh.elements.push_back(mesh.elements[7]);
+  std::swap(mesh.elements.back()[0], mesh.elements.back()[1]);
+  const auto orient = [&](std::array<Index, 4> v) {
+    std::array<std::array<double, 3>, 4> p;
+    for(int k = 0; k < 4; ++k)
+      p[std::size_t(k)] = mesh.points[v[std::size_t(k)]];
+    return internal::exact_orientation(p);
+  };
+  // the reference: every facet's elements by a map, each pair's apexes tested directly
+  std::map<std::array<Index, 3>, std::vector<std::pair<std::size_t, Index>>> around; // element, apex
+  std::vector<int> sign;
+  for(std::size_t t = 0; t < mesh.elements.size(); ++t) {
+    sign.push_back(orient(mesh.elements[t]));
+    for(int k = 0; k < 4; ++k) {
+      std::array<Index, 3> f;
+      for(int c = 0, j = 0; c < 4; ++c)
+        if(c != k)
+          f[std::size_t(j++)] = mesh.elements[t][std::size_t(c)];
+      std::sort(f.begin(), f.end());
+      around[f].push_back({t, mesh.elements[t][std::size_t(k)]});
+    }
+  }
+  const long positive = std::count(sign.begin(), sign.end(), 1), negative = std::count(sign.begin(), sign.end(), -1);
+  const int majority = positive >= negative ? 1 : -1;
+  std::vector<std::size_t> degenerate, mixed, overlapping, non_manifold;
+  std::size_t non_manifold_facets = 0;
+  for(std::size_t t = 0; t < sign.size(); ++t) {
+    if(sign[t] == 0)
+      degenerate.push_back(t);
+    if(sign[t] == -majority)
+      mixed.push_back(t);
+  }
+  for(const auto& [f, els] : around) {
+    if(els.size() > 2) {
+      ++non_manifold_facets;
+      for(const auto& e : els)
+        non_manifold.push_back(e.first);
+    } else if(els.size() == 2 && sign[els[0].first] != 0 && sign[els[1].first] != 0 &&
+              orient({f[0], f[1], f[2], els[0].second}) * orient({f[0], f[1], f[2], els[1].second}) >= 0) {
+      const bool a_odd = sign[els[0].first] != majority, b_odd = sign[els[1].first] != majority;
+      if(a_odd || !b_odd)
+        overlapping.push_back(els[0].first);
+      if(b_odd || !a_odd)
+        overlapping.push_back(els[1].first);
+    }
+  }
+  for(auto* list : {&overlapping, &non_manifold}) {
+    std::sort(list->begin(), list->end());
+    list->erase(std::unique(list->begin(), list->end()), list->end());
+  }
+  // the planted problems are there (else this test shows little)
+  REQUIRE(degenerate.size() >= 1);
+  REQUIRE(overlapping.size() >= 2);
+  REQUIRE(non_manifold_facets >= 1);
+  for(int threads : {1, 2}) {
+    INFO("threads " << threads);
+    std::vector<signed char> s;
+    const auto p = internal::check_input_mesh<3>(mesh.points, mesh.elements, s, threads);
+    CHECK(std::equal(s.begin(), s.end(), sign.begin(), sign.end()));
+    CHECK(p.positive == std::size_t(positive));
+    CHECK(p.negative == std::size_t(negative));
+    CHECK(p.degenerate == degenerate);
+    CHECK(p.mixed_orientation == mixed);
+    CHECK(p.overlapping == overlapping);
+    CHECK(p.non_manifold == non_manifold);
+    CHECK(p.non_manifold_facets == non_manifold_facets);
+  }
+}
+
+TEST_CASE("sorted_faces: the order of a comparison sort of all the records", "[threads][network]")
+{
+  auto mesh = kuhn_grid<3>(4);
+  // a scattered element order, so that the counting sort's runs start unsorted
+  std::reverse(mesh.elements.begin(), mesh.elements.end());
+  std::rotate(mesh.elements.begin(), mesh.elements.begin() + 37, mesh.elements.end());
+  const auto check = [&](const auto& local) {
+    constexpr int K = int(std::tuple_size<std::decay_t<decltype(local[0])>>::value);
+    const std::size_t F = local.size();
+    const auto got = internal::sorted_faces<K>(mesh.elements, local, mesh.points.size());
+    std::vector<std::pair<std::array<std::uint32_t, K>, std::uint32_t>> expected;
+    for(std::size_t t = 0; t < mesh.elements.size(); ++t)
+      for(std::size_t f = 0; f < F; ++f) {
+        std::array<std::uint32_t, K> v;
+        for(int c = 0; c < K; ++c)
+          v[std::size_t(c)] = mesh.elements[t][std::size_t(local[f][std::size_t(c)])];
+        std::sort(v.begin(), v.end());
+        expected.push_back({v, std::uint32_t(t * F + f)});
+      }
+    std::sort(expected.begin(), expected.end());
+    REQUIRE(got.size() == expected.size());
+    std::size_t same = 0;
+    for(std::size_t r = 0; r < got.size(); ++r)
+      same += got[r].vertices == expected[r].first && got[r].slot == expected[r].second;
+    CHECK(same == got.size());
+  };
+  check(internal::Simplex_tables<3>::edge);
+  check(internal::Simplex_tables<3>::facet);
 }

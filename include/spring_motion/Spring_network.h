@@ -5,6 +5,7 @@
 #include <spring_motion/Error.h>
 #include <spring_motion/internal/geometry/angles.h>
 #include <spring_motion/internal/geometry/simplex_tables.h>
+#include <spring_motion/internal/geometry/sorted_faces.h>
 #include <spring_motion/internal/solver/angle_slots.h>
 #include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
 
@@ -217,28 +218,20 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
   net.elements = std::move(elements);
   const std::size_t m = net.elements.size();
 
-  // Edges: sort (min, max, slot) records, then number the unique pairs.
+  // Edges: the sorted (min, max, slot) records, numbered by unique pair.
   {
-    struct Rec { Index a, b, slot; };
-    std::vector<Rec> recs;
-    recs.reserve(m * E);
-    for(std::size_t t = 0; t < m; ++t)
-      for(int k = 0; k < E; ++k) {
-        Index a = net.elements[t][Tables::edge[k][0]], b = net.elements[t][Tables::edge[k][1]];
-        if(a > b)
-          std::swap(a, b);
-        recs.push_back({a, b, Index(t * E + k)});
-      }
-    std::sort(recs.begin(), recs.end(), [](const Rec& x, const Rec& y) {
-      return x.a != y.a ? x.a < y.a : (x.b != y.b ? x.b < y.b : x.slot < y.slot);
-    });
+    auto recs = internal::sorted_faces<2>(net.elements, Tables::edge, n);
     net.element_edges.resize(m * E);
     // rank of each slot among its edge's slots (they are sorted by slot, so
     // by element)
     std::vector<Index> rank(m * E);
+    std::size_t unique = 0;
+    for(std::size_t r = 0; r < recs.size(); ++r)
+      unique += r == 0 || recs[r].vertices != recs[r - 1].vertices;
+    net.edges.reserve(unique);
     for(std::size_t r = 0, first = 0; r < recs.size(); ++r) {
-      if(r == 0 || recs[r].a != recs[r - 1].a || recs[r].b != recs[r - 1].b) {
-        net.edges.push_back({recs[r].a, recs[r].b});
+      if(r == 0 || recs[r].vertices != recs[r - 1].vertices) {
+        net.edges.push_back(recs[r].vertices);
         first = r;
       }
       net.element_edges[recs[r].slot] = Index(net.edges.size() - 1);
@@ -279,25 +272,15 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
   // Facets: those of exactly one element are the boundary.
   {
     using Key = std::array<Index, D>;
-    std::vector<std::pair<Key, Index>> recs; // sorted facet, element
-    recs.reserve(m * (D + 1));
-    for(std::size_t t = 0; t < m; ++t)
-      for(int k = 0; k <= D; ++k) {
-        Key key;
-        for(int c = 0; c < D; ++c)
-          key[c] = net.elements[t][Tables::facet[k][c]];
-        std::sort(key.begin(), key.end());
-        recs.push_back({key, Index(t)});
-      }
-    std::sort(recs.begin(), recs.end());
+    const auto recs = internal::sorted_faces<D>(net.elements, Tables::facet, n);
     for(std::size_t r = 0; r < recs.size();) {
       std::size_t s = r;
-      while(s < recs.size() && recs[s].first == recs[r].first)
+      while(s < recs.size() && recs[s].vertices == recs[r].vertices)
         ++s;
       SPRING_MOTION_CHECK(s - r <= 2, "a facet is shared by " << (s - r)
                                           << " elements: the mesh is not a manifold simplicial complex");
       if(s - r == 1)
-        net.boundary_facets.push_back(recs[r].first);
+        net.boundary_facets.push_back(recs[r].vertices);
       r = s;
     }
     net.on_boundary.assign(n, 0);

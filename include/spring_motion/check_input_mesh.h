@@ -6,6 +6,8 @@
 #include <spring_motion/internal/geometry/element_points.h>
 #include <spring_motion/internal/geometry/exact_orientation.h>
 #include <spring_motion/internal/geometry/simplex_tables.h>
+#include <spring_motion/internal/geometry/sorted_faces.h>
+#include <spring_motion/internal/solver/threads.h>
 
 #include <algorithm>
 #include <array>
@@ -50,16 +52,16 @@ struct Input_mesh_problems
   }
 };
 
-/// Checks the elements of a mesh given by `points` and `elements` (each
-/// element D + 1 indices into `points`; a `Spring_network`'s arrays or an
-/// `Indexed_mesh`'s). Throws `Element_error` for an element that uses a
-/// vertex out of range; every other problem is reported, not thrown.
+namespace internal {
+
+/// check_input_mesh(), also giving each element's exact orientation (`sign`:
+/// +1, -1 or 0), on `threads` threads (0: OpenMP's default).
 template <int D, class Points, class Elements>
-Input_mesh_problems check_input_mesh(const Points& points, const Elements& elements)
+Input_mesh_problems check_input_mesh(const Points& points, const Elements& elements, std::vector<signed char>& sign,
+                                     int threads)
 {
   static_assert(D == 2 || D == 3, "check_input_mesh: dimension must be 2 or 3");
   using Tables = internal::Simplex_tables<D>;
-  using Key = std::array<std::uint32_t, D>;
   Input_mesh_problems problems;
   const std::size_t m = elements.size();
   for(std::size_t t = 0; t < m; ++t)
@@ -68,11 +70,16 @@ Input_mesh_problems check_input_mesh(const Points& points, const Elements& eleme
                                   "element " << t << " uses vertex " << elements[t][std::size_t(k)]
                                              << ", out of range (" << points.size() << " vertices)");
 
-  std::vector<signed char> sign(m);
+  // the exact tests in parallel (the filtered predicates keep their
+  // rounding-mode state per call), the lists in order
+  sign.assign(m, 0);
+#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, m))
+  for(long t = 0; t < long(m); ++t)
+    sign[std::size_t(t)] =
+        static_cast<signed char>(internal::exact_orientation(internal::element_points<D>(elements, points, std::size_t(t))));
   int first_sign = 0;
   for(std::size_t t = 0; t < m; ++t) {
-    const int o = internal::exact_orientation(internal::element_points<D>(elements, points, t));
-    sign[t] = static_cast<signed char>(o);
+    const int o = sign[t];
     if(o == 0)
       problems.degenerate.push_back(t);
     else {
@@ -87,50 +94,46 @@ Input_mesh_problems check_input_mesh(const Points& points, const Elements& eleme
     if(sign[t] == -majority)
       problems.mixed_orientation.push_back(t);
 
-  // Facets as sorted vertex tuples: equal keys are one facet shared.
-  struct Rec
-  {
-    Key key;
-    std::uint32_t element;
-    int local; // the facet opposite local vertex `local`
-  };
-  std::vector<Rec> recs;
-  recs.reserve(m * (D + 1));
-  for(std::size_t t = 0; t < m; ++t)
-    for(int k = 0; k <= D; ++k) {
-      Key key;
-      for(int c = 0; c < D; ++c)
-        key[std::size_t(c)] = std::uint32_t(elements[t][std::size_t(Tables::facet[k][c])]);
-      std::sort(key.begin(), key.end());
-      recs.push_back({key, std::uint32_t(t), k});
-    }
-  std::sort(recs.begin(), recs.end(), [](const Rec& a, const Rec& b) {
-    return a.key != b.key ? a.key < b.key : a.element < b.element;
-  });
-  for(std::size_t r = 0; r < recs.size();) {
-    std::size_t s = r;
-    while(s < recs.size() && recs[s].key == recs[r].key)
+  // Facets as sorted vertex tuples: equal ones are one facet shared.
+  constexpr std::uint32_t F = D + 1;
+  const auto recs = internal::sorted_faces<D>(elements, Tables::facet, points.size());
+  const long nr = long(recs.size());
+  const auto same = [&](long a, long b) { return recs[std::size_t(a)].vertices == recs[std::size_t(b)].vertices; };
+  // overlap[r]: the facet of records r and r + 1 is shared by exactly those
+  // two non-degenerate elements, and their apexes lie on the same side of it
+  std::vector<char> overlap(recs.size(), 0);
+#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, recs.size()))
+  for(long r = 0; r < nr - 1; ++r) {
+    if(!same(r, r + 1) || (r > 0 && same(r - 1, r)) || (r + 2 < nr && same(r, r + 2)))
+      continue;
+    const auto& ra = recs[std::size_t(r)];
+    const auto& rb = recs[std::size_t(r) + 1];
+    const std::uint32_t a = ra.slot / F, b = rb.slot / F;
+    if(sign[a] == 0 || sign[b] == 0)
+      continue;
+    // the same sorted facet vertices for both makes the two tests comparable
+    std::array<std::array<double, D>, D + 1> pa, pb;
+    for(int c = 0; c < D; ++c)
+      pa[std::size_t(c)] = pb[std::size_t(c)] = points[ra.vertices[std::size_t(c)]];
+    pa[D] = points[elements[a][ra.slot % F]];
+    pb[D] = points[elements[b][rb.slot % F]];
+    overlap[std::size_t(r)] = internal::exact_orientation(pa) * internal::exact_orientation(pb) >= 0;
+  }
+  for(long r = 0; r < nr;) {
+    long s = r;
+    while(s < nr && same(s, r))
       ++s;
     if(s - r > 2) {
       ++problems.non_manifold_facets;
-      for(std::size_t i = r; i < s; ++i)
-        problems.non_manifold.push_back(recs[i].element);
-    } else if(s - r == 2 && sign[recs[r].element] != 0 && sign[recs[r + 1].element] != 0) {
-      // the two apexes must lie on opposite sides of the shared facet; the
-      // same sorted facet vertices for both makes the two tests comparable
-      const std::uint32_t a = recs[r].element, b = recs[r + 1].element;
-      std::array<std::array<double, D>, D + 1> pa, pb;
-      for(int c = 0; c < D; ++c)
-        pa[std::size_t(c)] = pb[std::size_t(c)] = points[recs[r].key[std::size_t(c)]];
-      pa[D] = points[elements[a][std::size_t(recs[r].local)]];
-      pb[D] = points[elements[b][std::size_t(recs[r + 1].local)]];
-      if(internal::exact_orientation(pa) * internal::exact_orientation(pb) >= 0) {
-        const bool a_odd = sign[a] != majority, b_odd = sign[b] != majority;
-        if(a_odd || !b_odd)
-          problems.overlapping.push_back(a);
-        if(b_odd || !a_odd)
-          problems.overlapping.push_back(b);
-      }
+      for(long i = r; i < s; ++i)
+        problems.non_manifold.push_back(recs[std::size_t(i)].slot / F);
+    } else if(s - r == 2 && overlap[std::size_t(r)]) {
+      const std::uint32_t a = recs[std::size_t(r)].slot / F, b = recs[std::size_t(r) + 1].slot / F;
+      const bool a_odd = sign[a] != majority, b_odd = sign[b] != majority;
+      if(a_odd || !b_odd)
+        problems.overlapping.push_back(a);
+      if(b_odd || !a_odd)
+        problems.overlapping.push_back(b);
     }
     r = s;
   }
@@ -139,6 +142,19 @@ Input_mesh_problems check_input_mesh(const Points& points, const Elements& eleme
     list->erase(std::unique(list->begin(), list->end()), list->end());
   }
   return problems;
+}
+
+} // namespace internal
+
+/// Checks the elements of a mesh given by `points` and `elements` (each
+/// element D + 1 indices into `points`; a `Spring_network`'s arrays or an
+/// `Indexed_mesh`'s). Throws `Element_error` for an element that uses a
+/// vertex out of range; every other problem is reported, not thrown.
+template <int D, class Points, class Elements>
+Input_mesh_problems check_input_mesh(const Points& points, const Elements& elements)
+{
+  std::vector<signed char> sign;
+  return internal::check_input_mesh<D>(points, elements, sign, 0);
 }
 
 /// The first problem element: the first degenerate one, else the first

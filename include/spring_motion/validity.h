@@ -33,13 +33,11 @@ struct Orientation_record
 template <int D>
 Orientation_record record_orientations(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x)
 {
-  const Input_mesh_problems problems = check_input_mesh<D>(x, net.elements);
+  Orientation_record rec;
+  // the check's exact orientations are the record: none is 0 in a valid mesh
+  const Input_mesh_problems problems = internal::check_input_mesh<D>(x, net.elements, rec.sign, 0);
   SPRING_MOTION_ELEMENT_CHECK(problems.valid(), first_problem_element(problems),
                               describe_input_mesh_problems(problems));
-  Orientation_record rec;
-  rec.sign.resize(net.number_of_elements());
-  for(std::size_t t = 0; t < net.number_of_elements(); ++t)
-    rec.sign[t] = static_cast<signed char>(internal::exact_orientation(internal::element_points<D>(net.elements, x, t)));
   return rec;
 }
 

@@ -99,8 +99,10 @@ TEST_CASE("3D angles: around the edges of a Triangulation_3 the dihedral angles 
   std::vector<double> angle_at(angle_of_slot.size());
   std::vector<int> traversed(net.number_of_elements(), 0);
   for(std::size_t i = 0; i < net.number_of_elements(); ++i) {
-    const Index* v = &slots.ordered_elements[i * 4];
-    const auto t = std::find(net.elements.begin(), net.elements.end(), Spring_network<3>::Element{v[0], v[1], v[2], v[3]});
+    Spring_network<3>::Element v;
+    for(std::size_t k = 0; k < 4; ++k)
+      v[k] = slots.traversal_vertices[slots.ordered_elements[i * 4 + k]];
+    const auto t = std::find(net.elements.begin(), net.elements.end(), v);
     REQUIRE(t != net.elements.end());
     ++traversed[std::size_t(t - net.elements.begin())];
     for(int k = 0; k < 6; ++k)
@@ -111,6 +113,18 @@ TEST_CASE("3D angles: around the edges of a Triangulation_3 the dihedral angles 
   for(Index e : slots.layout_edge)
     ++laid_out[e];
   CHECK(std::count(laid_out.begin(), laid_out.end(), 1) == long(net.number_of_edges()));
+  // every vertex once in the traversal's numbering, and each laid-out edge's
+  // ends (in the edge's order) through it
+  std::vector<int> numbered(net.number_of_vertices(), 0);
+  for(Index v : slots.traversal_vertices)
+    ++numbered[v];
+  CHECK(std::count(numbered.begin(), numbered.end(), 1) == long(net.number_of_vertices()));
+  REQUIRE(slots.layout_edge_ends.size() == net.number_of_edges());
+  std::size_t ends_found = 0;
+  for(std::size_t q = 0; q < net.number_of_edges(); ++q)
+    ends_found += slots.traversal_vertices[slots.layout_edge_ends[q][0]] == net.edges[slots.layout_edge[q]][0] &&
+                  slots.traversal_vertices[slots.layout_edge_ends[q][1]] == net.edges[slots.layout_edge[q]][1];
+  CHECK(ends_found == net.number_of_edges());
   int interior = 0, cube_edges = 0, diagonals = 0;
   for(std::size_t q = 0; q < net.number_of_edges(); ++q) {
     const std::size_t e = slots.layout_edge[q];

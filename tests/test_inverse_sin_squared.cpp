@@ -72,7 +72,8 @@ Spring_network<3> perturbed_cube(unsigned seed)
 template <class Model>
 std::vector<double> stiffness(const Spring_network<3>& net, const Model& model)
 {
-  std::vector<double> k, scratch;
+  std::vector<double> k;
+  internal::Stiffness_scratch<3> scratch;
   compute_edge_stiffness(net, net.points, model, Stiffness_context{3, net.longest_initial_edge}, k, scratch, 1);
   return k;
 }

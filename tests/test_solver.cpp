@@ -364,7 +364,8 @@ TEST_CASE("solvers: a zero-length edge is reported as coincident vertices", "[so
   const auto net = make_spring_network<2>(mesh.points, mesh.elements);
   auto x = net.points;
   x[4] = x[2]; // the state a collapsing step would reach
-  std::vector<double> k, scratch;
+  std::vector<double> k;
+  internal::Stiffness_scratch<2> scratch;
   try {
     internal::compute_edge_stiffness(net, x, Lineal_stiffness{}, Stiffness_context{2, 1.0}, k, scratch, 1);
     FAIL("no error");

@@ -39,7 +39,8 @@ std::map<Edge_key, double> edge_stiffness(std::vector<P2> points, std::vector<st
                                           const Model& model)
 {
   const auto net = make_spring_network<2>(std::move(points), std::move(triangles));
-  std::vector<double> k, scratch;
+  std::vector<double> k;
+  internal::Stiffness_scratch<2> scratch;
   internal::compute_edge_stiffness(net, net.points, model, Stiffness_context{2, net.longest_initial_edge}, k,
                                    scratch, 1);
   std::map<Edge_key, double> out;

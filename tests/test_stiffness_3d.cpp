@@ -46,7 +46,8 @@ struct Corner
     Stiffness_context ctx;
     ctx.dimension = 3;
     ctx.longest_initial_edge = net.longest_initial_edge;
-    std::vector<double> k, scratch;
+    std::vector<double> k;
+    internal::Stiffness_scratch<3> scratch;
     internal::compute_edge_stiffness(net, net.points, model, ctx, k, scratch, 1);
     return k;
   }
@@ -109,7 +110,8 @@ TEST_CASE("3D stiffness: the face slots are built on first use, once, and a face
   Spring_network<3> net = make_spring_network<3>({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {{0, 1, 2, 3}});
   const internal::Angle_slots& slots = internal::angle_slots(net);
   CHECK(slots.faces.empty()); // not built with the network: most models never read them
-  std::vector<double> k, scratch;
+  std::vector<double> k;
+  internal::Stiffness_scratch<3> scratch;
   const Stiffness_context ctx{3, net.longest_initial_edge};
   CHECK_THROWS_WITH(internal::compute_edge_stiffness(net, net.points, Zeng_Ethier_semi_torsional_stiffness{}, ctx, k,
                                                      scratch, 1),
@@ -201,12 +203,17 @@ void check_traversal_keeps_values(const Model& model)
   const auto& slots = internal::angle_slots(net);
   std::size_t moved = 0;
   for(std::size_t i = 0; i < net.number_of_elements(); ++i)
-    moved += !std::equal(net.elements[i].begin(), net.elements[i].end(), &slots.ordered_elements[i * (D + 1)]);
+    for(int k = 0; k <= D; ++k)
+      if(net.elements[i][std::size_t(k)] != slots.traversal_vertices[slots.ordered_elements[i * (D + 1) + std::size_t(k)]]) {
+        ++moved;
+        break;
+      }
   CHECK(moved > net.number_of_elements() / 2);
   const Stiffness_context ctx{D, net.longest_initial_edge};
   const auto expected = stiffness_by_edge(net, model, ctx);
   for(int threads : {1, 2}) {
-    std::vector<double> k, scratch;
+    std::vector<double> k;
+    internal::Stiffness_scratch<D> scratch;
     internal::compute_edge_stiffness(net, net.points, model, ctx, k, scratch, threads);
     INFO("threads " << threads);
     CHECK(k == expected); // bitwise

@@ -187,7 +187,7 @@ public:
   void release_step_memory()
   {
     std::vector<double>().swap(stiffness_);
-    std::vector<double>().swap(angle_scratch_);
+    stiffness_scratch_.release();
     solver_ = internal::Free_system<D>();
     for(std::vector<Point>* v : {&delta_, &candidate_, &moving_targets_, &outside_solution_})
       std::vector<Point>().swap(*v);
@@ -501,7 +501,7 @@ private:
     Stiffness_context ctx{D, net_.longest_initial_edge};
     if(model.angle_kind(D) == Angle_kind::face)
       internal::build_face_slots(net_);
-    internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, angle_scratch_, threads);
+    internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, stiffness_scratch_, threads);
     // sliding vertices couple the coordinates: then every model runs as a
     // block system (an edge model's k I blocks are its scalar system); so it
     // does with planes given, so that every part of a partitioned mesh runs
@@ -605,7 +605,8 @@ private:
   int measure_exponent_ = 0;
   double measure_scale_ = 0;
   std::vector<char> touches_moving_;
-  std::vector<double> stiffness_, angle_scratch_;
+  std::vector<double> stiffness_;
+  internal::Stiffness_scratch<D> stiffness_scratch_;
   // the solver state: ordering, pattern and multigrid aggregates, rebuilt
   // when the options they depend on change (Free_system::needs_build)
   internal::Free_system<D> solver_;

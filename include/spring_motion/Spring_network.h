@@ -171,17 +171,31 @@ void build_angle_layout(Spring_network<D>& net, const std::vector<Index>& rank)
   tab.layout_slot_offsets.assign(ne + 1, 0);
   for(std::size_t q = 0; q < ne; ++q)
     tab.layout_slot_offsets[q + 1] = tab.layout_slot_offsets[q] + count[tab.layout_edge[q]];
+  // vertices numbered in the order the traversal first meets them
+  std::vector<Index> local(net.points.size(), unseen);
+  tab.traversal_vertices.clear();
   tab.ordered_elements.resize(m * (D + 1));
   tab.slot_position.resize(m * E);
   for(std::size_t i = 0; i < m; ++i) {
     const std::size_t t = order[i];
-    for(int k = 0; k <= D; ++k)
-      tab.ordered_elements[i * (D + 1) + std::size_t(k)] = net.elements[t][std::size_t(k)];
+    for(int k = 0; k <= D; ++k) {
+      const Index v = net.elements[t][std::size_t(k)];
+      if(local[v] == unseen) {
+        local[v] = Index(tab.traversal_vertices.size());
+        tab.traversal_vertices.push_back(v);
+      }
+      tab.ordered_elements[i * (D + 1) + std::size_t(k)] = local[v];
+    }
     for(int j = 0; j < E; ++j) {
       const std::size_t s = t * E + std::size_t(j);
       tab.slot_position[i * E + std::size_t(j)] = tab.layout_slot_offsets[layout_of[net.element_edges[s]]] + rank[s];
     }
   }
+  tab.traversal_vertices.shrink_to_fit();
+  tab.layout_edge_ends.resize(ne);
+  for(std::size_t q = 0; q < ne; ++q)
+    for(int c = 0; c < 2; ++c)
+      tab.layout_edge_ends[q][std::size_t(c)] = local[net.edges[tab.layout_edge[q]][std::size_t(c)]];
 }
 
 } // namespace internal

@@ -21,7 +21,8 @@ struct Angle_slots
   using Index = std::uint32_t;
   // The element angles are computed in a spatial order of the elements
   // (`ordered_elements`: their vertices, D + 1 per element, elements sorted
-  // by the Morton code of their centroid) and stored edge by edge, the edges
+  // by the Morton code of their centroid; each vertex by its traversal
+  // number, see below) and stored edge by edge, the edges
   // laid out in the order that traversal first meets them: edge
   // layout_edge[q]'s slots are positions layout_slot_offsets[q] ..
   // layout_slot_offsets[q + 1] - 1, in increasing element number (so each
@@ -33,6 +34,15 @@ struct Angle_slots
   // angles' arithmetic; in this order both the vertices read and the
   // positions written stay close together.
   std::vector<Index> ordered_elements, slot_position, layout_slot_offsets, layout_edge;
+  // The stiffness reads positions through a copy in traversal order:
+  // traversal_vertices[v] is the network vertex the traversal meets v-th
+  // (vertices of no element are not listed), and layout_edge_ends[q] the
+  // traversal numbers of edge layout_edge[q]'s ends, in the edge's own order.
+  // Read in network order, the vertices of neighbouring elements and edges
+  // lie far apart in memory: on the wing the edge loop's reads of the edge
+  // list and of both ends' positions cost more than its arithmetic.
+  std::vector<Index> traversal_vertices;
+  std::vector<std::array<Index, 2>> layout_edge_ends;
 
   // 3D only: the unique triangular faces, their edges (local edge k opposite
   // local vertex k) and the same edge-major order for the face slots

@@ -44,22 +44,37 @@ inline std::array<double, Spring_network<D>::edges_per_element> element_edge_inv
     return dihedral_inverse_sin_squared(p);
 }
 
-/// Edge stiffness k_e of `model` at positions x. `angles` is scratch space:
-/// it holds the angles, or 1/sin^2 of them for a model that reads only that
-/// (Reads_inverse_sin_squared).
+/// What compute_edge_stiffness keeps between calls: the angles (or 1/sin^2
+/// of them for a model that reads only that, Reads_inverse_sin_squared) and
+/// the positions in the traversal's order (Angle_slots).
+template <int D>
+struct Stiffness_scratch
+{
+  std::vector<double> angles;
+  std::vector<std::array<double, D>> points;
+
+  void release()
+  {
+    std::vector<double>().swap(angles);
+    std::vector<std::array<double, D>>().swap(points);
+  }
+};
+
+/// Edge stiffness k_e of `model` at positions x.
 /// Throws when the model returns a negative or non-finite value.
 ///
 /// The angles are computed element by element (or face by face) and stored
-/// edge by edge, at their slot's position in an edge-major order: the edge loop then
-/// reads each edge's angles as one contiguous run. Read element by element
-/// instead, the angles of an edge lie far apart, and on the wing that gather
-/// cost more than computing them. Element angles are computed in the
-/// network's spatial traversal (Angle_slots), and the edges then visited in
-/// its layout; each edge's value depends on neither order.
+/// edge by edge, at their slot's position in an edge-major order: the edge
+/// loop then reads each edge's angles as one contiguous run. Read element by
+/// element instead, the angles of an edge lie far apart, and on the wing that
+/// gather cost more than computing them. Element angles are computed in the
+/// network's spatial traversal (Angle_slots), from a copy of the positions
+/// in that traversal's order, and the edges then visited in its layout;
+/// each edge's value depends on neither order.
 template <int D, class Model>
 void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
                             const Model& model, const Stiffness_context& ctx, std::vector<double>& k,
-                            std::vector<double>& angles, int threads)
+                            Stiffness_scratch<D>& scratch, int threads)
 {
   constexpr int E = Spring_network<D>::edges_per_element;
   const Angle_slots& slots = angle_slots(net);
@@ -69,23 +84,32 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   SPRING_MOTION_CHECK(!by_face || !slots.edge_face_slot_offsets.empty(),
                       "a model on face angles needs the network's face slots (internal::build_face_slots)");
   constexpr bool sines = Reads_inverse_sin_squared<Model>::value;
-  if(kind != Angle_kind::none) {
-    if(!by_face) {
-      angles.resize(std::size_t(m) * E);
+  // element angles: edges in the layout's order; face angles: in edge order
+  const bool by_layout = kind != Angle_kind::none && !by_face;
+  std::vector<double>& angles = scratch.angles;
+  auto& xt = scratch.points;
+  if(by_layout) {
+    const long nt = long(slots.traversal_vertices.size());
+    xt.resize(std::size_t(nt));
+#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(nt)))
+    for(long v = 0; v < nt; ++v)
+      xt[std::size_t(v)] = x[slots.traversal_vertices[std::size_t(v)]];
+    angles.resize(std::size_t(m) * E);
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
-      for(long i = 0; i < m; ++i) {
-        std::array<std::array<double, D>, D + 1> p;
-        for(int v = 0; v <= D; ++v)
-          p[std::size_t(v)] = x[slots.ordered_elements[std::size_t(i) * (D + 1) + std::size_t(v)]];
-        std::array<double, E> a;
-        if constexpr(sines)
-          a = element_edge_inverse_sin_squared<D>(p);
-        else
-          a = element_edge_angles<D>(p);
-        for(int j = 0; j < E; ++j)
-          angles[slots.slot_position[std::size_t(i) * E + std::size_t(j)]] = a[std::size_t(j)];
-      }
-    } else if constexpr(D == 3) {
+    for(long i = 0; i < m; ++i) {
+      std::array<std::array<double, D>, D + 1> p;
+      for(int v = 0; v <= D; ++v)
+        p[std::size_t(v)] = xt[slots.ordered_elements[std::size_t(i) * (D + 1) + std::size_t(v)]];
+      std::array<double, E> a;
+      if constexpr(sines)
+        a = element_edge_inverse_sin_squared<D>(p);
+      else
+        a = element_edge_angles<D>(p);
+      for(int j = 0; j < E; ++j)
+        angles[slots.slot_position[std::size_t(i) * E + std::size_t(j)]] = a[std::size_t(j)];
+    }
+  } else if(by_face) {
+    if constexpr(D == 3) {
       const long nf = long(slots.faces.size());
       angles.resize(std::size_t(nf) * 3);
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(nf)))
@@ -101,8 +125,6 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
       }
     }
   }
-  // element angles: edges in the layout's order; face angles: in edge order
-  const bool by_layout = kind != Angle_kind::none && !by_face;
   const auto& off = by_face ? slots.edge_face_slot_offsets : slots.layout_slot_offsets;
   const long ne = long(net.number_of_edges());
   k.resize(std::size_t(ne));
@@ -110,9 +132,16 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(ne))) \
     reduction(min : bad, coincident)
   for(long q = 0; q < ne; ++q) {
-    const long e = by_layout ? long(slots.layout_edge[std::size_t(q)]) : q;
-    const auto& ed = net.edges[std::size_t(e)];
-    const double l = distance<D>(x[ed[0]], x[ed[1]]); // > 0 for a tiny edge too
+    long e = q;
+    double l; // > 0 for a tiny edge too
+    if(by_layout) {
+      e = long(slots.layout_edge[std::size_t(q)]);
+      const auto& ends = slots.layout_edge_ends[std::size_t(q)];
+      l = distance<D>(xt[ends[0]], xt[ends[1]]);
+    } else {
+      const auto& ed = net.edges[std::size_t(e)];
+      l = distance<D>(x[ed[0]], x[ed[1]]);
+    }
     const double* a = nullptr;
     std::size_t na = 0;
     if(kind != Angle_kind::none) {

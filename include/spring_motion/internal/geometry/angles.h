@@ -367,7 +367,6 @@ inline std::array<double, 3> triangle_inverse_sin_squared(const std::array<doubl
 /// as triangle_inverse_sin_squared().
 inline std::array<double, 6> dihedral_inverse_sin_squared(const std::array<std::array<double, 3>, 4>& p)
 {
-  using T = Simplex_tables<3>;
   std::array<double, 3> a = sub<3>(p[1], p[0]), b = sub<3>(p[2], p[0]), c = sub<3>(p[3], p[0]);
   double extent = 0;
   for(int i = 0; i < 3; ++i)
@@ -390,16 +389,20 @@ inline std::array<double, 6> dihedral_inverse_sin_squared(const std::array<std::
   std::array<double, 3> n0;
   for(int i = 0; i < 3; ++i)
     n0[i] = bc[i] - ac[i] + ab[i];
-  const std::array<double, 4> face2{dot<3>(n0, n0), dot<3>(bc, bc), dot<3>(ac, ac), dot<3>(ab, ab)};
-  const std::array<std::array<double, 3>, 4> q{{{0, 0, 0}, a, b, c}};
+  // |n_f|^2 of the face opposite vertex f
+  const double f0 = dot<3>(n0, n0), f1 = dot<3>(bc, bc), f2 = dot<3>(ac, ac), f3 = dot<3>(ab, ab);
   const double det2 = det * det;
-  for(int k = 0; k < 6; ++k) {
-    const double l2 = dot<3>(sub<3>(q[std::size_t(T::edge[k][1])], q[std::size_t(T::edge[k][0])]),
-                             sub<3>(q[std::size_t(T::edge[k][1])], q[std::size_t(T::edge[k][0])]));
-    // the two faces at edge k are those opposite its two other vertices
-    const double den = face2[std::size_t(T::other[k][0])] * face2[std::size_t(T::other[k][1])];
-    const double num = det2 * l2;
-    out[std::size_t(k)] = (den > 0 && num > 1e-200 * den) ? den / num : cap;
+  // Per edge k (Simplex_tables<3>::edge), written out rather than looked up
+  // in the tables: read through a table from a small array on the stack, the
+  // compiler's vector loads of separately stored values stalled (store
+  // forwarding) and cost a fifth of the function. The two faces at edge k
+  // are those opposite its two other vertices (Simplex_tables<3>::other).
+  const std::array<double, 6> den{f2 * f3, f1 * f3, f1 * f2, f0 * f3, f0 * f2, f0 * f1};
+  const auto ba = sub<3>(b, a), ca = sub<3>(c, a), cb = sub<3>(c, b);
+  const std::array<double, 6> l2{dot<3>(a, a), dot<3>(b, b), dot<3>(c, c), dot<3>(ba, ba), dot<3>(ca, ca), dot<3>(cb, cb)};
+  for(std::size_t k = 0; k < 6; ++k) {
+    const double num = det2 * l2[k];
+    out[k] = (den[k] > 0 && num > 1e-200 * den[k]) ? den[k] / num : cap;
   }
   return out;
 }

@@ -456,10 +456,15 @@ Extracted_network<Mesh, Traits> extract_spring_network(const Mesh& mesh)
     }
     elements.push_back(t);
   });
+  // the network keeps these arrays for the whole run: no spare capacity
+  elements.shrink_to_fit();
   // renumber the used vertices densely, keeping the traits' order
   std::vector<Index> renumber(all.size(), std::numeric_limits<Index>::max());
   Extracted_network<Mesh, Traits> out;
   std::vector<std::array<double, D>> points;
+  const auto number_used = std::size_t(std::count(used.begin(), used.end(), 1));
+  points.reserve(number_used);
+  out.handles.reserve(number_used);
   for(std::size_t i = 0; i < all.size(); ++i)
     if(used[i]) {
       renumber[i] = Index(out.handles.size());

@@ -101,6 +101,7 @@ void read_simplices(Token_reader& reader, const char* section, const char* entri
   const std::size_t limit = reader.reserve_limit(count, 2 * (N + 1));
   simplices.reserve(simplices.size() + limit);
   labels.reserve(labels.size() + limit);
+  lines.reserve(lines.size() + limit);
   for(std::size_t i = 0; i < count; ++i) {
     std::array<std::uint32_t, N> simplex;
     std::size_t line = 0;

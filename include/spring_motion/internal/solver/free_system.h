@@ -183,6 +183,9 @@ public:
       row_offsets_[r + 1] = Index(col_.size());
       bnd_offsets_[r + 1] = Index(bnd_vertex_.size());
     }
+    // kept for the whole run: no spare capacity
+    for(auto* v : {&col_, &edge_, &bnd_vertex_, &bnd_edge_})
+      v->shrink_to_fit();
     elements_.clear();
     element_dest_.clear();
     element_vertices_.clear();

@@ -24,9 +24,12 @@ static_assert(std::is_same<decltype(spring_motion::internal::capped_pow(2.0, 3.0
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cfenv>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <random>
 
 using namespace spring_motion::internal;
 
@@ -51,4 +54,66 @@ TEST_CASE("capped_math: exact below the cap, the cap above it, no overflow on th
   CHECK(inverse_sin_squared(std::asin(0.5)) == Approx(4.0).epsilon(1e-14));
   CHECK(inverse_sin_squared(0.0) == Approx(1e200).epsilon(1e-15));
   CHECK(cap_stiffness(std::numeric_limits<double>::infinity()) == max_stiffness);
+}
+
+namespace {
+// The capped operations as first written (a library ilogb, a division in
+// every capped product): the fast paths must give the same bits.
+double reference_pow(double x, double e)
+{
+  if(x == 0)
+    return e > 0 ? 0.0 : (e == 0 ? 1.0 : max_stiffness);
+  if(std::abs(e) * double(std::abs(std::ilogb(x)) + 1) < 800) {
+    const double a = std::abs(e);
+    if(a == 1 || a == 2 || a == 3 || a == 4) {
+      const double x2 = x * x;
+      const double p = a == 1 ? x : a == 2 ? x2 : a == 3 ? x2 * x : x2 * x2;
+      return e > 0 ? p : 1.0 / p;
+    }
+    return std::pow(x, e);
+  }
+  if(e * std::log(x) >= std::log(max_stiffness))
+    return max_stiffness;
+  return std::min(std::pow(x, e), max_stiffness);
+}
+double reference_product(double a, double b)
+{
+  if(b > 0 && a >= max_stiffness / b)
+    return max_stiffness;
+  return std::min(a * b, max_stiffness);
+}
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+} // namespace
+
+TEST_CASE("capped_math: the exponent from the bits and the division-free product give the same bits",
+          "[stiffness][capped]")
+{
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> mantissa(1.0, 2.0);
+  std::uniform_int_distribution<int> exponent(-1074, 1023);
+  const double exponents[] = {1, 2, 3, 4, -1, -2, -3, -4, 0.5, -0.75, -0.76, 2.5, -3.7};
+  std::size_t pow_same = 0, product_same = 0, exponent_same = 0, n = 0;
+  for(int i = 0; i < 200000; ++i) {
+    const double x = std::ldexp(mantissa(random), exponent(random)); // normal and subnormal
+    const double y = std::ldexp(mantissa(random), exponent(random));
+    exponent_same += binary_exponent(x) == std::ilogb(x);
+    const double e = exponents[std::size_t(i) % (sizeof exponents / sizeof exponents[0])];
+    pow_same += same_bits(capped_pow(x, e), reference_pow(x, e));
+    product_same += same_bits(capped_product(x, y), reference_product(x, y));
+    ++n;
+  }
+  CHECK(exponent_same == n);
+  CHECK(pow_same == n);
+  CHECK(product_same == n);
+  // around the product's shortcut (a b near 2^801) and the cap (1e250)
+  for(double a : {std::ldexp(1.0, 400), std::ldexp(1.5, 400), 1e125, std::nextafter(1e125, 2e125)})
+    for(double b : {std::ldexp(1.0, 399), std::ldexp(1.9, 399), std::ldexp(1.0, 400), 1e125, 1e124,
+                    std::nextafter(1e125, 0.0), 0.0}) {
+      INFO(a << " * " << b);
+      CHECK(same_bits(capped_product(a, b), reference_product(a, b)));
+    }
+  CHECK(binary_exponent(std::numeric_limits<double>::denorm_min()) == -1074);
+  CHECK(binary_exponent(std::numeric_limits<double>::infinity()) == 1024);
+  CHECK(binary_exponent(1.0) == 0);
+  CHECK(binary_exponent(0.75) == -1);
 }

@@ -127,6 +127,9 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   }
   const auto& off = by_face ? slots.edge_face_slot_offsets : slots.layout_slot_offsets;
   const long ne = long(net.number_of_edges());
+  // a copy the loop's stores into k cannot alias: the model's terms of the
+  // context alone (l0 / max_stiffness) are then computed once, not per edge
+  const Stiffness_context context = ctx;
   k.resize(std::size_t(ne));
   long bad = ne, coincident = ne;
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(ne))) \
@@ -152,9 +155,9 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
     double v = 0.0;
     if(l > 0) {
       if constexpr(sines)
-        v = model(l, Inverse_sin_squared{a, na}, ctx);
+        v = model(l, Inverse_sin_squared{a, na}, context);
       else
-        v = model(l, a, na, ctx);
+        v = model(l, a, na, context);
     }
     k[std::size_t(e)] = v;
     if(l == 0)

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -371,16 +372,44 @@ TEST_CASE("thread determinism: check_input_mesh finds the problems a direct sear
   }
 }
 
+TEST_CASE("morton_code: bit b of coordinate c is bit D * b + c", "[network]")
+{
+  // the definition, bit by bit
+  const auto reference = [](const auto& q) {
+    constexpr int D = int(std::tuple_size<std::decay_t<decltype(q)>>::value);
+    constexpr int bits = D == 3 ? 21 : 32;
+    std::uint64_t code = 0;
+    for(int b = 0; b < bits; ++b)
+      for(int c = 0; c < D; ++c)
+        code |= std::uint64_t((q[std::size_t(c)] >> b) & 1u) << (D * b + c);
+    return code;
+  };
+  std::mt19937 rng(7);
+  std::size_t same2 = 0, same3 = 0;
+  const std::size_t count = 100000;
+  for(std::size_t i = 0; i < count; ++i) {
+    // full 32-bit words: in 3D the bits above 21 must be left out
+    const std::array<std::uint32_t, 2> q2{std::uint32_t(rng()), std::uint32_t(rng())};
+    const std::array<std::uint32_t, 3> q3{std::uint32_t(rng()), std::uint32_t(rng()), std::uint32_t(rng())};
+    same2 += internal::morton_code<2>(q2) == reference(q2);
+    same3 += internal::morton_code<3>(q3) == reference(q3);
+  }
+  CHECK(same2 == count);
+  CHECK(same3 == count);
+  CHECK(internal::morton_code<3>({0x1fffff, 0x1fffff, 0x1fffff}) == 0x7fffffffffffffffULL);
+  CHECK(internal::morton_code<2>({0xffffffffu, 0}) == 0x5555555555555555ULL);
+}
+
 TEST_CASE("sorted_faces: the order of a comparison sort of all the records", "[threads][network]")
 {
   auto mesh = kuhn_grid<3>(4);
   // a scattered element order, so that the counting sort's runs start unsorted
   std::reverse(mesh.elements.begin(), mesh.elements.end());
   std::rotate(mesh.elements.begin(), mesh.elements.begin() + 37, mesh.elements.end());
-  const auto check = [&](const auto& local) {
+  const auto check = [&](const auto& local, int threads) {
     constexpr int K = int(std::tuple_size<std::decay_t<decltype(local[0])>>::value);
     const std::size_t F = local.size();
-    const auto got = internal::sorted_faces<K>(mesh.elements, local, mesh.points.size());
+    const auto got = internal::sorted_faces<K>(mesh.elements, local, mesh.points.size(), threads);
     std::vector<std::pair<std::array<std::uint32_t, K>, std::uint32_t>> expected;
     for(std::size_t t = 0; t < mesh.elements.size(); ++t)
       for(std::size_t f = 0; f < F; ++f) {
@@ -397,6 +426,10 @@ TEST_CASE("sorted_faces: the order of a comparison sort of all the records", "[t
       same += got[r].vertices == expected[r].first && got[r].slot == expected[r].second;
     CHECK(same == got.size());
   };
-  check(internal::Simplex_tables<3>::edge);
-  check(internal::Simplex_tables<3>::facet);
+  // each thread places one range of elements: three threads split them unevenly
+  for(const int threads : {1, 2, 3}) {
+    INFO(threads << " threads");
+    check(internal::Simplex_tables<3>::edge, threads);
+    check(internal::Simplex_tables<3>::facet, threads);
+  }
 }

@@ -7,6 +7,7 @@
 #include <spring_motion/internal/geometry/simplex_tables.h>
 #include <spring_motion/internal/geometry/sorted_faces.h>
 #include <spring_motion/internal/solver/angle_slots.h>
+#include <spring_motion/internal/solver/threads.h>
 #include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
 
 #include <algorithm>
@@ -90,16 +91,39 @@ std::vector<char> used_vertices(const Spring_network<D>& net)
 
 namespace internal {
 
-/// Interleaves the low 21 bits of x, y, z (3D) or the low 32 of x, y (2D).
+/// Bit b of the low 21 bits of x moved to bit 3b (spread_bits_3), of the
+/// low 32 bits to bit 2b (spread_bits_2): five shift-and-mask steps instead
+/// of a loop over the bits.
+inline std::uint64_t spread_bits_3(std::uint64_t x)
+{
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
+}
+inline std::uint64_t spread_bits_2(std::uint64_t x)
+{
+  x &= 0xffffffffULL;
+  x = (x | x << 16) & 0x0000ffff0000ffffULL;
+  x = (x | x << 8) & 0x00ff00ff00ff00ffULL;
+  x = (x | x << 4) & 0x0f0f0f0f0f0f0f0fULL;
+  x = (x | x << 2) & 0x3333333333333333ULL;
+  x = (x | x << 1) & 0x5555555555555555ULL;
+  return x;
+}
+
+/// Interleaves the low 21 bits of x, y, z (3D) or the low 32 of x, y (2D):
+/// bit b of coordinate c is bit D * b + c of the code.
 template <int D>
 std::uint64_t morton_code(const std::array<std::uint32_t, D>& q)
 {
-  std::uint64_t code = 0;
-  constexpr int bits = D == 3 ? 21 : 32;
-  for(int b = 0; b < bits; ++b)
-    for(int c = 0; c < D; ++c)
-      code |= std::uint64_t((q[c] >> b) & 1u) << (D * b + c);
-  return code;
+  if constexpr(D == 3)
+    return spread_bits_3(q[0]) | spread_bits_3(q[1]) << 1 | spread_bits_3(q[2]) << 2;
+  else
+    return spread_bits_2(q[0]) | spread_bits_2(q[1]) << 1;
 }
 
 /// The elements in a spatial order: by the Morton code of their centroid
@@ -124,7 +148,9 @@ std::vector<Index> spatial_element_order(const Spring_network<D>& net)
   const double cells = std::ldexp(1.0, bits) - 1;
   // halves and shares of coordinates, so that no sum or difference of
   // coordinates near the largest double overflows
-  for(std::size_t t = 0; t < m; ++t) {
+#pragma omp parallel for schedule(static) num_threads(thread_count(0, m))
+  for(long i = 0; i < long(m); ++i) {
+    const std::size_t t = std::size_t(i);
     std::array<std::uint32_t, D> q;
     for(int c = 0; c < D; ++c) {
       double centre = 0;
@@ -241,10 +267,10 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
     std::vector<Index> rank(m * E);
     std::size_t unique = 0;
     for(std::size_t r = 0; r < recs.size(); ++r)
-      unique += r == 0 || recs[r].vertices != recs[r - 1].vertices;
+      unique += r == 0 || !internal::same_face(recs[r], recs[r - 1]);
     net.edges.reserve(unique);
     for(std::size_t r = 0, first = 0; r < recs.size(); ++r) {
-      if(r == 0 || recs[r].vertices != recs[r - 1].vertices) {
+      if(r == 0 || !internal::same_face(recs[r], recs[r - 1])) {
         net.edges.push_back(recs[r].vertices);
         first = r;
       }
@@ -289,7 +315,7 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
     const auto recs = internal::sorted_faces<D>(net.elements, Tables::facet, n);
     for(std::size_t r = 0; r < recs.size();) {
       std::size_t s = r;
-      while(s < recs.size() && recs[s].vertices == recs[r].vertices)
+      while(s < recs.size() && internal::same_face(recs[s], recs[r]))
         ++s;
       SPRING_MOTION_CHECK(s - r <= 2, "a facet is shared by " << (s - r)
                                           << " elements: the mesh is not a manifold simplicial complex");

@@ -54,6 +54,40 @@ struct Input_mesh_problems
 
 namespace internal {
 
+/// The exact orientation of every element (+1, -1 or 0) into `sign`, on
+/// `threads` threads (0: OpenMP's default). Every vertex index must be in
+/// range.
+template <int D, class Points, class Elements>
+void element_orientations(const Points& points, const Elements& elements, std::vector<signed char>& sign, int threads)
+{
+  const std::size_t m = elements.size();
+  sign.assign(m, 0);
+  // in parallel: the filtered predicates keep their rounding-mode state per call
+#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, m))
+  for(long t = 0; t < long(m); ++t)
+    sign[std::size_t(t)] =
+        static_cast<signed char>(internal::exact_orientation(internal::element_points<D>(elements, points, std::size_t(t))));
+}
+
+/// The sign (+1 or -1) of the permutation taking an element's vertices
+/// `element` (D + 1 distinct indices) to the order (`facet`..., apex), where
+/// `facet` lists the other D vertices and `apex` is a local index.
+template <int D, class Element, class Facet>
+int permutation_sign(const Element& element, const Facet& facet, std::size_t apex)
+{
+  std::array<std::size_t, D + 1> local;
+  for(std::size_t c = 0; c < std::size_t(D); ++c)
+    for(std::size_t k = 0; k <= std::size_t(D); ++k)
+      if(std::size_t(element[k]) == std::size_t(facet[c]))
+        local[c] = k;
+  local[std::size_t(D)] = apex;
+  int inversions = 0;
+  for(std::size_t i = 0; i <= std::size_t(D); ++i)
+    for(std::size_t j = i + 1; j <= std::size_t(D); ++j)
+      inversions += local[i] > local[j];
+  return inversions % 2 == 0 ? 1 : -1;
+}
+
 /// check_input_mesh(), also giving each element's exact orientation (`sign`:
 /// +1, -1 or 0), on `threads` threads (0: OpenMP's default).
 template <int D, class Points, class Elements>
@@ -70,13 +104,8 @@ Input_mesh_problems check_input_mesh(const Points& points, const Elements& eleme
                                   "element " << t << " uses vertex " << elements[t][std::size_t(k)]
                                              << ", out of range (" << points.size() << " vertices)");
 
-  // the exact tests in parallel (the filtered predicates keep their
-  // rounding-mode state per call), the lists in order
-  sign.assign(m, 0);
-#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, m))
-  for(long t = 0; t < long(m); ++t)
-    sign[std::size_t(t)] =
-        static_cast<signed char>(internal::exact_orientation(internal::element_points<D>(elements, points, std::size_t(t))));
+  // the exact tests in parallel, the lists in order
+  element_orientations<D>(points, elements, sign, threads);
   int first_sign = 0;
   for(std::size_t t = 0; t < m; ++t) {
     const int o = sign[t];
@@ -96,9 +125,9 @@ Input_mesh_problems check_input_mesh(const Points& points, const Elements& eleme
 
   // Facets as sorted vertex tuples: equal ones are one facet shared.
   constexpr std::uint32_t F = D + 1;
-  const auto recs = internal::sorted_faces<D>(elements, Tables::facet, points.size());
+  const auto recs = internal::sorted_faces<D>(elements, Tables::facet, points.size(), threads);
   const long nr = long(recs.size());
-  const auto same = [&](long a, long b) { return recs[std::size_t(a)].vertices == recs[std::size_t(b)].vertices; };
+  const auto same = [&](long a, long b) { return internal::same_face(recs[std::size_t(a)], recs[std::size_t(b)]); };
   // overlap[r]: the facet of records r and r + 1 is shared by exactly those
   // two non-degenerate elements, and their apexes lie on the same side of it
   std::vector<char> overlap(recs.size(), 0);
@@ -111,13 +140,12 @@ Input_mesh_problems check_input_mesh(const Points& points, const Elements& eleme
     const std::uint32_t a = ra.slot / F, b = rb.slot / F;
     if(sign[a] == 0 || sign[b] == 0)
       continue;
-    // the same sorted facet vertices for both makes the two tests comparable
-    std::array<std::array<double, D>, D + 1> pa, pb;
-    for(int c = 0; c < D; ++c)
-      pa[std::size_t(c)] = pb[std::size_t(c)] = points[ra.vertices[std::size_t(c)]];
-    pa[D] = points[elements[a][ra.slot % F]];
-    pb[D] = points[elements[b][rb.slot % F]];
-    overlap[std::size_t(r)] = internal::exact_orientation(pa) * internal::exact_orientation(pb) >= 0;
+    // the orientation of (sorted facet vertices, apex) is the element's
+    // exact orientation times the sign of the permutation that reorders its
+    // vertices so: no predicate needs to be evaluated again
+    const int side_a = sign[a] * permutation_sign<D>(elements[a], ra.vertices, ra.slot % F);
+    const int side_b = sign[b] * permutation_sign<D>(elements[b], rb.vertices, rb.slot % F);
+    overlap[std::size_t(r)] = side_a == side_b;
   }
   for(long r = 0; r < nr;) {
     long s = r;

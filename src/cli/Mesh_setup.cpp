@@ -103,11 +103,23 @@ Mesh_setup<D> make_mesh_setup(const std::string& path, const Mesh_file& file, bo
   }
   std::sort(labelled.begin(), labelled.end());
   std::vector<std::size_t> sides(mesh.boundary_facets.size(), 0);
+  // only a facet whose vertices all lie on labelled facets can be one: most
+  // facets of a mesh are skipped before the search
+  std::vector<char> labelled_vertex(mesh.points.size(), 0);
+  for(const auto& f : mesh.boundary_facets)
+    for(const std::uint32_t v : f)
+      if(v < labelled_vertex.size())
+        labelled_vertex[v] = 1;
   for(std::size_t t = 0; t < m; ++t)
     for(int k = 0; k <= D; ++k) {
       Key key;
-      for(int c = 0; c < D; ++c)
+      bool candidate = true;
+      for(int c = 0; c < D; ++c) {
         key[c] = mesh.elements[t][Tables::facet[k][c]];
+        candidate = candidate && labelled_vertex[key[c]];
+      }
+      if(!candidate)
+        continue;
       std::sort(key.begin(), key.end());
       for(auto it = std::lower_bound(labelled.begin(), labelled.end(), std::make_pair(key, std::size_t(0)));
           it != labelled.end() && it->first == key; ++it)

@@ -210,6 +210,34 @@ TEST_CASE("check_input_mesh: elements overlapping across a shared facet", "[vali
   CHECK(refused_element(make_spring_network<3>(pts, bad)) == 0);
 }
 
+TEST_CASE("record_orientations: with the mesh checked by the caller, the same record, and no flat element",
+          "[validity][check]")
+{
+  // the same signs as with the check, the fan's orientations as given (one flipped)
+  auto fan = hexagon_fan();
+  std::swap(fan.elements[2][0], fan.elements[2][1]);
+  const auto net = make_spring_network<2>(fan.points, fan.elements);
+  const auto here = record_orientations(net, net.points);
+  const auto by_caller = record_orientations(net, net.points, Mesh_checks::by_caller);
+  CHECK(by_caller.sign == here.sign);
+  CHECK(by_caller.sign == std::vector<signed char>{1, 1, -1, 1, 1, 1});
+  // a degenerate element is still refused, by its number
+  const auto flat = make_spring_network<2>({{0, 0}, {1, 0}, {2, 0}, {0, 1}}, {{0, 1, 3}, {0, 1, 2}});
+  try {
+    record_orientations(flat, flat.points, Mesh_checks::by_caller);
+    FAIL("a degenerate element was recorded");
+  } catch(const Element_error& e) {
+    CHECK(e.element() == 1);
+    CHECK_THAT(e.what(), Catch::Contains("degenerate"));
+  }
+  // the facet tests are the caller's: two overlapping tetrahedra pass here
+  std::vector<std::array<double, 3>> pts{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.1, 0.1, 0.5}};
+  const auto fold = make_spring_network<3>(pts, {{0, 1, 2, 3}, {0, 1, 2, 4}});
+  CHECK_THROWS_AS(record_orientations(fold, fold.points), Element_error);
+  CHECK(record_orientations(fold, fold.points, Mesh_checks::by_caller).sign == std::vector<signed char>{1, 1});
+  CHECK_THROWS(record_orientations(fold, {pts[0], pts[1]}, Mesh_checks::by_caller)); // too few positions
+}
+
 TEST_CASE("check_input_mesh: a facet in more than two elements", "[validity][check]")
 {
   Indexed_mesh<2> fin;

@@ -71,8 +71,11 @@ class Network_deformer
 public:
   using Point = std::array<double, D>;
 
-  Network_deformer(Spring_network<D> network, std::vector<Vertex_role> roles, Role_checks checks = Role_checks::here)
-      : Network_deformer(std::move(network), std::move(roles), {}, checks)
+  /// `mesh_checks`: whether the input mesh is checked here or has been by
+  /// the caller (`record_orientations`).
+  Network_deformer(Spring_network<D> network, std::vector<Vertex_role> roles, Role_checks checks = Role_checks::here,
+                   Mesh_checks mesh_checks = Mesh_checks::here)
+      : Network_deformer(std::move(network), std::move(roles), {}, checks, mesh_checks)
   {
   }
 
@@ -83,13 +86,13 @@ public:
   /// fitted on `network`. With planes given every model runs as a block
   /// system, as it does with sliding vertices.
   Network_deformer(Spring_network<D> network, std::vector<Vertex_role> roles, std::vector<Boundary_plane<D>> planes,
-                   Role_checks checks = Role_checks::here)
+                   Role_checks checks = Role_checks::here, Mesh_checks mesh_checks = Mesh_checks::here)
       : net_(std::move(network)), roles_(std::move(roles))
   {
     const std::size_t n = net_.number_of_vertices();
     SPRING_MOTION_CHECK(roles_.size() == n, "got " << roles_.size() << " vertex roles for " << n << " vertices");
     positions_ = net_.points;
-    record_ = record_orientations(net_, positions_);
+    record_ = record_orientations(net_, positions_, mesh_checks);
     const std::vector<char> used = used_vertices(net_);
     sliding_ = internal::sliding_set(net_, roles_, planes);
     planes_given_ = !planes.empty();

@@ -25,15 +25,38 @@ struct Orientation_record
   std::vector<signed char> sign; // +1 or -1 per element
 };
 
+/// Who checks the input mesh (`check_input_mesh`: degenerate and
+/// overlapping elements, facets in more than two elements) before its
+/// orientations are recorded: the recording itself (`here`), or the caller,
+/// who has checked the same elements at the same points and found no
+/// problem (`by_caller`: a program that reports problems against its own
+/// file; the facet tests cost as much as several steps on a large mesh).
+/// Either way a degenerate element is refused.
+enum class Mesh_checks { here, by_caller };
+
 /// Records the exact orientation of every element at positions x (each its
 /// own: elements may be listed in either order). Checks the mesh first
-/// (`check_input_mesh`): a mesh with degenerate elements, overlapping
-/// elements or a facet in more than two elements cannot be moved validly, and
-/// `Element_error` names its first problem element.
+/// (`check_input_mesh`, unless `checks` says the caller has): a mesh with
+/// degenerate elements, overlapping elements or a facet in more than two
+/// elements cannot be moved validly, and `Element_error` names its first
+/// problem element.
 template <int D>
-Orientation_record record_orientations(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x)
+Orientation_record record_orientations(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
+                                       Mesh_checks checks = Mesh_checks::here)
 {
   Orientation_record rec;
+  if(checks == Mesh_checks::by_caller) {
+    SPRING_MOTION_CHECK(x.size() == net.number_of_vertices(),
+                        "got " << x.size() << " positions for " << net.number_of_vertices() << " vertices");
+    internal::element_orientations<D>(x, net.elements, rec.sign, 0);
+    Input_mesh_problems problems;
+    for(std::size_t t = 0; t < rec.sign.size(); ++t)
+      if(rec.sign[t] == 0)
+        problems.degenerate.push_back(t);
+    SPRING_MOTION_ELEMENT_CHECK(problems.valid(), first_problem_element(problems),
+                                describe_input_mesh_problems(problems));
+    return rec;
+  }
   // the check's exact orientations are the record: none is 0 in a valid mesh
   const Input_mesh_problems problems = internal::check_input_mesh<D>(x, net.elements, rec.sign, 0);
   SPRING_MOTION_ELEMENT_CHECK(problems.valid(), first_problem_element(problems),

@@ -417,7 +417,7 @@ int run_deformer(const Deform_settings& s, Mesh_setup<D>* setup, Network_deforme
   Orientation_record whole_record;
   if(partitioned) {
     if(partitioned->rank() == 0)
-      whole_record = record_orientations(setup->network, setup->network.points);
+      whole_record = record_orientations(setup->network, setup->network.points, Mesh_checks::by_caller);
     deformer.solve_override = [&](const Step_system_view<D>& view, std::vector<Point>& x) {
       return partitioned->solve(view, x, s.options.solver);
     };
@@ -552,7 +552,8 @@ int run_motion(const Deform_settings& s, Mesh_setup<D>& setup, std::vector<Verte
     return run_deformer<D>(s, &setup, deformer, &partitioned, motion, out, err, err_is_terminal);
   }
 #endif
-  Network_deformer<D> deformer(std::move(setup.network), std::move(roles));
+  // make_mesh_setup has checked the file's mesh, reporting against its lines
+  Network_deformer<D> deformer(std::move(setup.network), std::move(roles), Role_checks::here, Mesh_checks::by_caller);
   return run_deformer<D>(s, &setup, deformer, nullptr, motion, out, err, err_is_terminal);
 }
 
@@ -644,7 +645,7 @@ int run_deform(const Deform_settings& s, const Mesh_file& file, std::ostream& ou
     } else
       roles = assign_command_line_roles(setup, rules, prescribed);
   }
-  try { // the library checks the roles (Network_deformer) and the input mesh once more
+  try { // the library checks the roles (Network_deformer)
     return motion.visit([&](const auto& m) {
       return run_motion<D>(s, setup, std::move(roles), m, out, err, err_is_terminal);
     });

@@ -406,10 +406,10 @@ TEST_CASE("sorted_faces: the order of a comparison sort of all the records", "[t
   // a scattered element order, so that the counting sort's runs start unsorted
   std::reverse(mesh.elements.begin(), mesh.elements.end());
   std::rotate(mesh.elements.begin(), mesh.elements.begin() + 37, mesh.elements.end());
-  const auto check = [&](const auto& local, int threads) {
+  const auto check = [&](const auto& local) {
     constexpr int K = int(std::tuple_size<std::decay_t<decltype(local[0])>>::value);
     const std::size_t F = local.size();
-    const auto got = internal::sorted_faces<K>(mesh.elements, local, mesh.points.size(), threads);
+    const auto got = internal::sorted_faces<K>(mesh.elements, local, mesh.points.size());
     std::vector<std::pair<std::array<std::uint32_t, K>, std::uint32_t>> expected;
     for(std::size_t t = 0; t < mesh.elements.size(); ++t)
       for(std::size_t f = 0; f < F; ++f) {
@@ -426,10 +426,6 @@ TEST_CASE("sorted_faces: the order of a comparison sort of all the records", "[t
       same += got[r].vertices == expected[r].first && got[r].slot == expected[r].second;
     CHECK(same == got.size());
   };
-  // each thread places one range of elements: three threads split them unevenly
-  for(const int threads : {1, 2, 3}) {
-    INFO(threads << " threads");
-    check(internal::Simplex_tables<3>::edge, threads);
-    check(internal::Simplex_tables<3>::facet, threads);
-  }
+  check(internal::Simplex_tables<3>::edge);
+  check(internal::Simplex_tables<3>::facet);
 }

@@ -7,7 +7,6 @@
 #include <spring_motion/internal/geometry/simplex_tables.h>
 #include <spring_motion/internal/geometry/sorted_faces.h>
 #include <spring_motion/internal/solver/angle_slots.h>
-#include <spring_motion/internal/solver/threads.h>
 #include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
 
 #include <algorithm>
@@ -148,9 +147,7 @@ std::vector<Index> spatial_element_order(const Spring_network<D>& net)
   const double cells = std::ldexp(1.0, bits) - 1;
   // halves and shares of coordinates, so that no sum or difference of
   // coordinates near the largest double overflows
-#pragma omp parallel for schedule(static) num_threads(thread_count(0, m))
-  for(long i = 0; i < long(m); ++i) {
-    const std::size_t t = std::size_t(i);
+  for(std::size_t t = 0; t < m; ++t) {
     std::array<std::uint32_t, D> q;
     for(int c = 0; c < D; ++c) {
       double centre = 0;

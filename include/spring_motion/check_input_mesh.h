@@ -125,7 +125,7 @@ Input_mesh_problems check_input_mesh(const Points& points, const Elements& eleme
 
   // Facets as sorted vertex tuples: equal ones are one facet shared.
   constexpr std::uint32_t F = D + 1;
-  const auto recs = internal::sorted_faces<D>(elements, Tables::facet, points.size(), threads);
+  const auto recs = internal::sorted_faces<D>(elements, Tables::facet, points.size());
   const long nr = long(recs.size());
   const auto same = [&](long a, long b) { return internal::same_face(recs[std::size_t(a)], recs[std::size_t(b)]); };
   // overlap[r]: the facet of records r and r + 1 is shared by exactly those

@@ -3,7 +3,6 @@
 #define SPRING_MOTION_INTERNAL_GEOMETRY_SORTED_FACES_H
 
 #include <spring_motion/Error.h>
-#include <spring_motion/internal/solver/threads.h>
 
 #include <algorithm>
 #include <array>
@@ -62,13 +61,13 @@ inline void sort_small(std::array<std::uint32_t, K>& v)
 ///
 /// A counting sort by the smallest vertex, then a sort of each vertex's few
 /// records (about twenty): on a 320k-tetrahedron mesh a comparison sort of
-/// all of them took most of the setup before the first step. In parallel,
-/// each thread counts and places the faces of one range of elements, then
-/// sorts the runs of some vertices; no two records have the same key
-/// (vertices, slot), so the result does not depend on the threads.
+/// all of them took most of the setup before the first step. On one
+/// thread, as the rest of the set-up: beside a busy machine's other
+/// processes, barriers wait for descheduled threads (a parallel version was
+/// faster on the idle machine and slower beside two busy processes).
 template <int K, std::size_t F, class Elements>
 std::vector<Face_record<K>> sorted_faces(const Elements& elements, const std::array<std::array<int, K>, F>& local,
-                                         std::size_t number_of_vertices, int threads = 0)
+                                         std::size_t number_of_vertices)
 {
   const std::size_t m = elements.size();
   SPRING_MOTION_CHECK(m <= std::numeric_limits<std::uint32_t>::max() / F,
@@ -83,60 +82,32 @@ std::vector<Face_record<K>> sorted_faces(const Elements& elements, const std::ar
     r.slot = std::uint32_t(t * F + f);
     return r;
   };
-  const auto smallest = [&](std::size_t t, std::size_t f) {
-    std::uint32_t v = std::uint32_t(elements[t][std::size_t(local[f][0])]);
-    for(int c = 1; c < K; ++c)
-      v = std::min(v, std::uint32_t(elements[t][std::size_t(local[f][std::size_t(c)])]));
-    return v;
-  };
-  const int nt = std::max(1, thread_count(threads, m * F));
-  // next[i * n + v]: where thread i places its next face with smallest vertex v
-  std::vector<std::uint32_t> next(std::size_t(nt) * n, 0);
   std::vector<std::uint32_t> start(n + 1, 0); // vertex v's records: [start[v], start[v + 1])
+  for(std::size_t t = 0; t < m; ++t)
+    for(std::size_t f = 0; f < F; ++f) {
+      std::uint32_t v = std::uint32_t(elements[t][std::size_t(local[f][0])]);
+      for(int c = 1; c < K; ++c)
+        v = std::min(v, std::uint32_t(elements[t][std::size_t(local[f][std::size_t(c)])]));
+      ++start[v + 1];
+    }
+  for(std::size_t v = 0; v < n; ++v)
+    start[v + 1] += start[v];
+  // placed in slot order, so each vertex's run starts sorted by slot
   std::vector<Face_record<K>> records(m * F);
+  std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+  for(std::size_t t = 0; t < m; ++t)
+    for(std::size_t f = 0; f < F; ++f) {
+      const Face_record<K> r = face(t, f);
+      records[next[r.vertices[0]]++] = r;
+    }
   const auto before = [](const Face_record<K>& a, const Face_record<K>& b) {
     for(std::size_t c = 1; c < std::size_t(K); ++c)
       if(a.vertices[c] != b.vertices[c])
         return a.vertices[c] < b.vertices[c];
     return a.slot < b.slot;
   };
-#pragma omp parallel num_threads(nt)
-  {
-#ifdef _OPENMP
-    const std::size_t i = std::size_t(omp_get_thread_num()), count = std::size_t(omp_get_num_threads());
-#else
-    const std::size_t i = 0, count = 1;
-#endif
-    const std::size_t first = m * i / count, last = m * (i + 1) / count;
-    std::uint32_t* mine = next.data() + i * n;
-    for(std::size_t t = first; t < last; ++t)
-      for(std::size_t f = 0; f < F; ++f)
-        ++mine[smallest(t, f)];
-#pragma omp barrier
-#pragma omp single
-    {
-      std::uint32_t at = 0;
-      for(std::size_t v = 0; v < n; ++v) {
-        start[v] = at;
-        for(std::size_t j = 0; j < count; ++j) {
-          const std::uint32_t c = next[j * n + v];
-          next[j * n + v] = at;
-          at += c;
-        }
-      }
-      start[n] = at;
-    } // implicit barrier
-    for(std::size_t t = first; t < last; ++t)
-      for(std::size_t f = 0; f < F; ++f) {
-        const Face_record<K> r = face(t, f);
-        records[mine[r.vertices[0]]++] = r;
-      }
-#pragma omp barrier
-#pragma omp for schedule(static, 256)
-    for(long v = 0; v < long(n); ++v)
-      std::sort(records.begin() + std::ptrdiff_t(start[std::size_t(v)]),
-                records.begin() + std::ptrdiff_t(start[std::size_t(v) + 1]), before);
-  }
+  for(std::size_t v = 0; v < n; ++v)
+    std::sort(records.begin() + std::ptrdiff_t(start[v]), records.begin() + std::ptrdiff_t(start[v + 1]), before);
   return records;
 }
 

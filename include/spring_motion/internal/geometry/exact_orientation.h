@@ -24,9 +24,10 @@ using Exact_predicates_kernel = CGAL::Exact_predicates_inexact_constructions_ker
 /// all: 2^-760 covers them. In 3D the sum is at most 6 mx my mz (mx: the
 /// largest |x difference|, ...), so 43u mx my mz bounds the error too
 /// (6 (7 + 56u) u and the roundings of both bounds stay below 43u): tried
-/// first, it spares most elements the sum's twelve operations. A fused multiply-add (a compiler may contract a
-/// product and a sum) only leaves out roundings the bound allows for. NaN and
-/// infinite coordinates fail the size test: CGAL's predicate decides them.
+/// first, it spares most elements the sum's twelve operations. A fused
+/// multiply-add (a compiler may contract a product and a sum) only leaves
+/// out roundings the bound allows for. NaN and infinite coordinates fail
+/// the size test: CGAL's predicate decides them.
 inline int filtered_orientation(const std::array<std::array<double, 2>, 3>& p)
 {
   constexpr double u = 0x1p-53;

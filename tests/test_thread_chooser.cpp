@@ -1,6 +1,7 @@
 // The thread chooser behind Solver_options::threads = 0: it must settle on
-// the cheaper of the team and one thread, keep probing the other rarely, and
-// follow a change of load.
+// the cheaper of the team and one thread, keep probing the other rarely,
+// follow a change of load, and not probe the team while one thread cannot
+// get a core of its own.
 #include <spring_motion/internal/solver/thread_chooser.h>
 
 #include <catch2/catch.hpp>
@@ -13,10 +14,14 @@ using spring_motion::internal::Thread_chooser;
 
 namespace {
 
+double full_core(int) { return 1.0; }
+
 // Runs `steps` steps whose cost per unit of work is team_cost(step) with the
-// team and one_cost(step) with one thread; returns how many used the team.
-template <class Team_cost, class One_cost>
-int team_steps(Thread_chooser& c, int first, int steps, Team_cost team_cost, One_cost one_cost)
+// team and one_cost(step) with one thread, a one-thread step's thread running
+// share(step) of its wall time; returns how many used the team.
+template <class Team_cost, class One_cost, class Share = double (*)(int)>
+int team_steps(Thread_chooser& c, int first, int steps, Team_cost team_cost, One_cost one_cost,
+               Share share = full_core)
 {
   int team = 0;
   for(int i = first; i < first + steps; ++i) {
@@ -24,9 +29,20 @@ int team_steps(Thread_chooser& c, int first, int steps, Team_cost team_cost, One
     const bool is_team = t > 1;
     team += is_team;
     const std::size_t iterations = 20;
-    c.record((is_team ? team_cost(i) : one_cost(i)) * (iterations + 4), iterations);
+    const double seconds = (is_team ? team_cost(i) : one_cost(i)) * (iterations + 4);
+    // a team's calling thread spins at its barriers: its CPU time is its wall
+    // time whether or not the team had its cores
+    c.record(seconds, iterations, is_team ? seconds : share(i) * seconds);
   }
   return team;
+}
+
+// Two other CPU-bound processes on 2 cores: a thread gets 2/3 of a core on
+// average, and anything from 1/2 to all of it in a single step.
+double crowded_core(int step)
+{
+  const double shares[] = {0.71, 0.56, 1.0, 0.58, 0.65, 0.87, 0.5, 0.7, 0.8};
+  return shares[step % 9];
 }
 
 } // namespace
@@ -70,6 +86,32 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
     CHECK(c.next(0) == 1);
     c.record(1.0, 20);
     CHECK(team_steps(c, 1, 19, [](int) { return 3.0; }, [](int) { return 1.0; }) == 1);
+  }
+  SECTION("crowded cores, seen by one thread's CPU share: the team is not tried")
+  {
+    // the one-thread steps get 2/3 of a core: a team, which needs two free
+    // cores, is not probed at all, though one step had a core to itself
+    Thread_chooser c;
+    CHECK(team_steps(c, 0, 100, [](int) { return 3.0; }, [](int) { return 1.0; }, crowded_core) == 0);
+    CHECK(c.chosen() == 1);
+    CHECK(c.crowded());
+  }
+  SECTION("a core frees up: the team is tried within a few steps and kept")
+  {
+    Thread_chooser c;
+    CHECK(team_steps(c, 0, 20, [](int) { return 3.0; }, [](int) { return 1.0; }, crowded_core) == 0);
+    // idle from step 20: the team is twice as fast
+    const int team = team_steps(c, 20, 20, [](int) { return 1.0; }, [](int) { return 2.0; });
+    CHECK(team >= 15);
+    CHECK(c.chosen() == 2);
+    CHECK_FALSE(c.crowded());
+  }
+  SECTION("a full core for one thread: the team is probed as before")
+  {
+    // one other busy process: one thread runs freely, the team stalls
+    Thread_chooser c;
+    CHECK(team_steps(c, 0, 20, [](int) { return 3.0; }, [](int) { return 1.0; }) == 1);
+    CHECK(c.chosen() == 1);
   }
   SECTION("a close call (the team 1.5x slower) is checked again after 8 steps")
   {

@@ -244,7 +244,7 @@ public:
       }
       if(options.quality_every_step) {
         const auto q0 = Clock::now();
-        step_quality(s, options.solver.threads);
+        step_quality(s, quality_threads(options));
         s.seconds_check += seconds_since(q0);
       }
       rep.steps.push_back(s);
@@ -253,11 +253,11 @@ public:
     rep.final_fraction = t_;
     rep.final_angle_deg = internal::motion_angle_deg(motion, t_);
     std::vector<double> min_angle;
-    const auto r = element_skewness(net_, positions_, options.solver.threads, &min_angle);
+    const auto r = element_skewness(net_, positions_, quality_threads(options), &min_angle);
     rep.quality_all = skewness_histogram(r, [](std::size_t) { return true; });
     rep.quality_moving = skewness_histogram(r, [&](std::size_t t) { return touches_moving_[t] != 0; });
     smallest_angles(min_angle, rep.min_angle_deg_moving, rep.min_angle_deg_all);
-    std::tie(rep.min_size_ratio, rep.max_size_ratio) = size_ratio_range(options.solver.threads);
+    std::tie(rep.min_size_ratio, rep.max_size_ratio) = size_ratio_range(quality_threads(options));
     rep.seconds_total = seconds_since(start);
     return rep;
   }
@@ -313,7 +313,7 @@ public:
     last_inverted_ = ok ? std::vector<std::size_t>{} : std::move(failed.inverted);
     if(ok && options.quality_every_step) {
       const auto q0 = Clock::now();
-      step_quality(s, options.solver.threads);
+      step_quality(s, quality_threads(options));
       s.seconds_check += seconds_since(q0);
     }
     return s;
@@ -460,12 +460,20 @@ private:
     }
   }
 
+  // The quality passes run on the last step's thread count when the chooser
+  // picks it: on a crowded machine that is one thread, and a team would stall.
+  int quality_threads(const Deform_options& options) const
+  {
+    return options.solver.threads > 0 ? options.solver.threads : threads_.chosen();
+  }
+
   template <class Place, class Model>
   bool try_increment(const Place& place, const Model& model, const Deform_options& options, double target,
                      Step_report& s, Attempt& failed)
   {
     constexpr bool element_model = internal::Is_element_model<Model, D>::value;
     const auto attempt_start = Clock::now();
+    const double cpu_start = internal::thread_cpu_seconds();
     Solver_options solver_options = options.solver;
     const int threads = solver_options.threads = threads_.next(options.solver.threads);
     s.threads = threads;
@@ -566,7 +574,8 @@ private:
     failed.inverted.clear();
     find_inverted_elements(net_, candidate_, record_, std::back_inserter(failed.inverted), threads);
     s.seconds_check += seconds_since(t0);
-    threads_.record(seconds_since(attempt_start), sr.iterations);
+    const double wall = seconds_since(attempt_start), cpu_end = internal::thread_cpu_seconds();
+    threads_.record(wall, sr.iterations, cpu_start >= 0 && cpu_end >= 0 ? cpu_end - cpu_start : -1);
     const bool valid = failed.inverted.empty();
     if(!(agree_on_validity ? agree_on_validity(valid) : valid))
       return false;

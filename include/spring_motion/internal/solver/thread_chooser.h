@@ -30,6 +30,17 @@ namespace internal {
 /// also builds the solver's state and so is not measured, runs on one
 /// thread: on a busy machine a team step costs several one-thread steps, on
 /// an idle one the first step costs a little more.
+///
+/// One-thread steps also say whether the cores are crowded without trying
+/// the team: the share of their wall time the thread ran on a core (its CPU
+/// time over its wall time) is about 1 when a core was free for it, and
+/// about 2/3 when two other CPU-bound processes share 2 cores with it (0.5 to
+/// 1 step by step: the share is averaged over the last few steps, each half
+/// the weight of the next). Below `crowded_share` a team cannot find a core
+/// for each of its threads, so a team probe (the first one too) waits until
+/// the one-thread steps get a core again: on a busy machine the probes,
+/// which cost about five one-thread steps each on the wing, are not run, and
+/// a core that frees up is enough to try the team again.
 class Thread_chooser
 {
 public:
@@ -38,11 +49,11 @@ public:
   {
     fixed_ = requested > 0 || thread_count(0) == 1;
     if(fixed_)
-      return thread_count(requested);
+      return last_ = thread_count(requested);
     // one thread for the first step (not measured), the team, one thread,
     // then the cheaper with probes of the other
     if(!warm_)
-      return 1;
+      return last_ = 1;
     if(cost_[0] != cost_[0])
       probing_ = 0;
     else if(cost_[1] != cost_[1])
@@ -51,16 +62,33 @@ public:
       probing_ = 1 - best_;
     else
       probing_ = best_;
-    return probing_ == 0 ? thread_count(0) : 1;
+    // a team tried while one thread cannot get a core of its own
+    waiting_ = probing_ == 0 && (cost_[0] != cost_[0] || best_ == 1) && crowded();
+    if(waiting_)
+      probing_ = 1;
+    last_ = probing_ == 0 ? thread_count(0) : 1;
+    return last_;
   }
 
-  /// What the step chosen by the last next() cost.
-  void record(double seconds, std::size_t iterations)
+  /// What the step chosen by the last next() cost: its wall time, its solver
+  /// iterations and the CPU time of the calling thread in it (negative when
+  /// not known).
+  void record(double seconds, std::size_t iterations, double cpu_seconds = -1)
   {
     if(fixed_)
       return;
+    if(last_ == 1 && cpu_seconds >= 0) {
+      cpu_sum_ = 0.5 * cpu_sum_ + cpu_seconds;
+      wall_sum_ = 0.5 * wall_sum_ + seconds;
+    }
+
     if(!warm_) {
       warm_ = true;
+      return;
+    }
+    if(waiting_) {
+      // one thread in place of a team probe: its cost, nothing else changes
+      cost_[1] = seconds / (double(iterations) + 4);
       return;
     }
     cost_[probing_] = seconds / (double(iterations) + 4);
@@ -77,15 +105,23 @@ public:
       interval_ *= 2;
   }
 
-  /// The choice so far: the team's thread count or 1.
-  int chosen() const { return best_ == 0 ? thread_count(0) : 1; }
+  /// The thread count of the last step (0 before any: OpenMP's default).
+  int chosen() const { return last_; }
+
+  /// One-thread steps whose thread ran less than this share of their wall
+  /// time (averaged) say the cores are crowded.
+  static constexpr double crowded_share = 0.9;
+
+  /// Whether the last one-thread steps say the cores are crowded.
+  bool crowded() const { return cpu_sum_ < crowded_share * wall_sum_; }
 
 private:
   static constexpr double unknown = std::numeric_limits<double>::quiet_NaN();
   double cost_[2] = {unknown, unknown}; // seconds per unit of work: [0] the team, [1] one thread
-  int best_ = 0, probing_ = 0;
+  double cpu_sum_ = 0, wall_sum_ = 0;   // one-thread steps' CPU and wall times, decayed
+  int best_ = 0, probing_ = 0, last_ = 0;
   std::size_t since_probe_ = 0, interval_ = 8;
-  bool fixed_ = true, warm_ = false;
+  bool fixed_ = true, warm_ = false, waiting_ = false;
 };
 
 } // namespace internal

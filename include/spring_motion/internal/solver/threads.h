@@ -3,6 +3,7 @@
 #define SPRING_MOTION_INTERNAL_SOLVER_THREADS_H
 
 #include <cstddef>
+#include <time.h>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -47,6 +48,18 @@ inline int thread_count(int requested, std::size_t items)
 inline int heavy_thread_count(int requested, std::size_t items)
 {
   return items * 16 < parallel_threshold ? 1 : thread_count(requested);
+}
+
+/// The CPU time of the calling thread in seconds, or -1 where the platform
+/// does not tell (the thread chooser then never sees crowded cores).
+inline double thread_cpu_seconds()
+{
+#ifdef CLOCK_THREAD_CPUTIME_ID
+  timespec ts;
+  if(clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts) == 0)
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+#endif
+  return -1;
 }
 
 } // namespace internal

@@ -30,6 +30,7 @@ static_assert(std::is_same<decltype(spring_motion::internal::capped_pow(2.0, 3.0
 #include <cstring>
 #include <limits>
 #include <random>
+#include <vector>
 
 using namespace spring_motion::internal;
 
@@ -116,4 +117,32 @@ TEST_CASE("capped_math: the exponent from the bits and the division-free product
   CHECK(binary_exponent(std::numeric_limits<double>::infinity()) == 1024);
   CHECK(binary_exponent(1.0) == 0);
   CHECK(binary_exponent(0.75) == -1);
+}
+
+TEST_CASE("capped_math: all_finite from the bits agrees with std::isfinite", "[stiffness][capped]")
+{
+  using limits = std::numeric_limits<double>;
+  // the values next to the boundary between finite and not, either sign
+  const double specials[] = {limits::quiet_NaN(), -limits::quiet_NaN(), limits::signaling_NaN(), limits::infinity(),
+                             -limits::infinity(), limits::max(),        -limits::max(),          limits::denorm_min(),
+                             -limits::denorm_min(), limits::min(),      0.0,                     -0.0,
+                             1.0,                   std::ldexp(1.0, 1023), std::ldexp(1.5, 1023)};
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> value(-1e3, 1e3);
+  std::vector<double> v(144);
+  std::size_t agree = 0, flagged = 0, n = 0;
+  for(const double s : specials)
+    for(std::size_t at = 0; at < v.size(); ++at)
+      for(std::size_t length : {v.size(), at + 1, std::size_t(1) + at / 2}) {
+        for(double& x : v)
+          x = value(random);
+        v[at] = s;
+        const bool expected = std::all_of(v.begin(), v.begin() + long(length), [](double x) { return std::isfinite(x); });
+        agree += all_finite(v.data(), length) == expected;
+        flagged += !expected;
+        ++n;
+      }
+  CHECK(agree == n);
+  CHECK(flagged > n / 10); // non-finite values are tested (and, past the range's end, ignored)
+  CHECK(all_finite(v.data(), 0));
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -44,6 +45,24 @@ inline int binary_exponent(double x)
   if(biased == 0x7ff)
     return 1024;
   return biased != 0 ? biased - 1023 : std::ilogb(x);
+}
+
+/// Whether the n values at v are all finite, read from the bits: a value is
+/// infinite or NaN exactly when its exponent field is all ones, and adding one
+/// to that field then carries into the sign bit. The loop has no branch and
+/// no floating-point operation (nothing to trap), so it runs as vector integer
+/// operations: a loop of std::isfinite over an element matrix of a tetrahedron
+/// was a third of the time spent scattering it.
+inline bool all_finite(const double* v, std::size_t n)
+{
+  constexpr std::uint64_t exponent = 0x7ff0000000000000u, one = 0x0010000000000000u;
+  std::uint64_t carries = 0;
+  for(std::size_t i = 0; i < n; ++i) {
+    std::uint64_t bits;
+    std::memcpy(&bits, v + i, sizeof bits);
+    carries |= (bits & exponent) + one;
+  }
+  return (carries >> 63) == 0;
 }
 
 /// min(x^e, max_stiffness) for x >= 0.

@@ -6,6 +6,7 @@
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/internal/solver/threads.h>
 #include <spring_motion/internal/geometry/angles.h>
+#include <spring_motion/internal/geometry/capped_math.h>
 #include <spring_motion/internal/geometry/element_points.h>
 #include <spring_motion/internal/solver/free_system.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
@@ -193,10 +194,7 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
     model.add_element_matrix(p, Ke.data());
     // all of it, rows of constrained vertices too: a model that breaks
     // there breaks elsewhere on another step
-    bool finite = true;
-    for(double v : Ke)
-      finite = finite && std::isfinite(v);
-    SPRING_MOTION_ELEMENT_CHECK(finite, t, "element stiffness of element " << t << " is not finite");
+    SPRING_MOTION_ELEMENT_CHECK(all_finite(Ke.data(), Ke.size()), t, "element stiffness of element " << t << " is not finite");
   } catch(...) {
 #pragma omp critical(spring_motion_element_matrix_error)
     if(long(t) < first_bad) {

@@ -104,6 +104,35 @@ inline void subtract_block_product(std::array<double, D>& s, const T* M, const s
       s[r] -= double(M[r * D + c]) * x[c];
 }
 
+/// Index of entry (r, c), r <= c, of a symmetric D x D block stored as its
+/// upper triangle by rows (D(D+1)/2 values).
+template <int D>
+constexpr int upper_triangle_index(int r, int c)
+{
+  return r * D - r * (r - 1) / 2 + (c - r);
+}
+
+/// The upper triangle of the D x D block m as T values (see
+/// upper_triangle_index).
+template <int D, class T>
+inline void copy_upper_triangle(const double* m, T* u)
+{
+  for(int r = 0; r < D; ++r)
+    for(int c = r; c < D; ++c)
+      u[upper_triangle_index<D>(r, c)] = T(m[r * D + c]);
+}
+
+/// s -= M x for a symmetric D x D block M stored as its upper triangle (of
+/// doubles, or of floats read as doubles): the products and sums of
+/// subtract_block_product on the full block, in its order, so the same bits.
+template <int D, class T>
+inline void subtract_symmetric_block_product(std::array<double, D>& s, const T* U, const std::array<double, D>& x)
+{
+  for(int r = 0; r < D; ++r)
+    for(int c = 0; c < D; ++c)
+      s[r] -= double(U[r <= c ? upper_triangle_index<D>(r, c) : upper_triangle_index<D>(c, r)]) * x[c];
+}
+
 /// M x for a D x D block M.
 template <int D>
 inline std::array<double, D> block_product(const double* M, const std::array<double, D>& x)

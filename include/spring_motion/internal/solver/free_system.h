@@ -59,6 +59,7 @@ class Free_system
 public:
   using Row = std::array<double, D>;
   static constexpr int DD = D * D;
+  static constexpr int UD = D * (D + 1) / 2; // a symmetric block's upper triangle
   static constexpr Index none = std::numeric_limits<Index>::max();
 
   bool built() const { return built_; }
@@ -103,6 +104,9 @@ public:
   /// Matrix entries in the public layout (Step_system_view): scalar: one
   /// value per nonzero and per row; block: D*D each, row-major.
   const double* values() const { return block_ ? blocks_.data() + order_.size() * DD : val_.data(); }
+  /// Whether the last block preconditioner read single-precision copies of
+  /// the off-diagonal blocks' upper triangles (all of them were symmetric).
+  bool smoother_read_upper_triangles() const { return single_upper_; }
   const double* diagonal() const { return block_ ? blocks_.data() : diag_.data(); }
   const std::vector<Row>& rhs() const { return b_; }
   const std::vector<Row>& solution() const { return x_; }
@@ -629,16 +633,27 @@ private:
                         "too many stiffness blocks for 32-bit indices");
   }
 
+  // s -= A_q x for off-diagonal entry q read from `off`: a full D x D
+  // block, or (Upper) a symmetric block's upper triangle
+  template <bool Upper, class V>
+  static void subtract_off_block(Row& s, const V* off, Index q, const Row& x)
+  {
+    if constexpr(Upper)
+      subtract_symmetric_block_product<D>(s, off + std::size_t(q) * UD, x);
+    else
+      subtract_block_product<D>(s, off + std::size_t(q) * DD, x);
+  }
+
   // s = rhs_k - sum over the row's off-diagonal entries [row_offsets_[k],
   // end) of A_kj x_j, the entries read from `off` (values(), or their
-  // single-precision copy)
-  template <bool B, class V>
+  // single-precision copy, Upper: of the upper triangles)
+  template <bool B, class V, bool Upper = false>
   Row off_residual(const std::vector<Row>& x, const Row& rhs, std::size_t k, Index end, const V* off) const
   {
     Row s = rhs;
     if constexpr(B) {
       for(Index q = row_offsets_[k]; q < end; ++q)
-        subtract_block_product<D>(s, off + std::size_t(q) * DD, x[col_[q]]);
+        subtract_off_block<Upper>(s, off, q, x[col_[q]]);
     } else {
       for(Index q = row_offsets_[k]; q < end; ++q) {
         const double v = double(off[q]);
@@ -684,11 +699,11 @@ private:
   // (no arithmetic changes).
   static constexpr std::size_t backward_prefetch_rows = 8;
 
-  template <bool B, class V>
+  template <bool B, bool Upper, class V>
   void prefetch_row(const V* off, std::size_t k) const
   {
 #if defined(__GNUC__)
-    constexpr std::size_t w = B ? DD : 1;
+    constexpr std::size_t w = B ? (Upper ? UD : DD) : 1;
     const char* a = reinterpret_cast<const char*>(off + std::size_t(row_offsets_[k]) * w);
     const char* e = reinterpret_cast<const char*>(off + std::size_t(row_offsets_[k + 1]) * w);
     for(; a < e; a += 64)
@@ -705,7 +720,7 @@ private:
   // the same result. `off`: the off-diagonal entries (see off_residual).
   // `track`: return the max change. `from_zero` (forward only): x is zero,
   // so the rows after each row, still zero when it is updated, are not read.
-  template <bool B, class V>
+  template <bool B, class V, bool Upper = false>
   double sweep(std::vector<Row>& x, const std::vector<Row>& rhs, const V* off, double omega, int threads,
                bool forward, bool track = true, bool from_zero = false)
   {
@@ -722,8 +737,9 @@ private:
         for(long kk = 0; kk < re - rb; ++kk) {
           const std::size_t K = std::size_t(forward ? rb + kk : re - 1 - kk);
           if(!forward && K >= backward_prefetch_rows)
-            prefetch_row<B>(off, K - backward_prefetch_rows);
-          const Row s = off_residual<B>(x, rhs[K], K, from_zero ? upper_offsets_[K] : row_offsets_[K + 1], off);
+            prefetch_row<B, Upper>(off, K - backward_prefetch_rows);
+          const Row s =
+              off_residual<B, V, Upper>(x, rhs[K], K, from_zero ? upper_offsets_[K] : row_offsets_[K + 1], off);
           Row y;
           if constexpr(B) // the block row's local solve D_K^{-1} s, relaxed
             y = block_product<D>(&inv_diag_[K * DD], s);
@@ -842,10 +858,11 @@ private:
   }
 
   // What the preconditioner of a solve reads: the multigrid's coarse
-  // levels (`cycle`) and the sweeps' single-precision entries (`single`).
+  // levels (`cycle`) and the sweeps' single-precision entries (`single`),
+  // stored as upper triangles (`upper`).
   struct Preconditioner_state
   {
-    bool cycle = false, single = false;
+    bool cycle = false, single = false, upper = false;
   };
 
   // Loads the preconditioner `options` select for the loaded system.
@@ -875,6 +892,7 @@ private:
     Preconditioner_state pc;
     pc.cycle = mg && (B ? rigid_.number_of_levels() : multigrid_.number_of_levels()) > 0;
     pc.single = B && prepare_single_smoother(options.threads);
+    pc.upper = pc.single && single_upper_;
     return pc;
   }
 
@@ -885,7 +903,8 @@ private:
     const double omega = options.preconditioner_relaxation_factor;
     if constexpr(B)
       if(pc.single)
-        return precondition<B>(single_off_.data(), omega, options.threads, pc.cycle);
+        return pc.upper ? precondition<B, float, true>(single_off_.data(), omega, options.threads, pc.cycle)
+                        : precondition<B>(single_off_.data(), omega, options.threads, pc.cycle);
     precondition<B>(values(), omega, options.threads, pc.cycle);
   }
 
@@ -903,8 +922,9 @@ private:
   // to the double one; conjugate gradients' own products and the stopping
   // test stay in double, so the solution's accuracy is the same. (A scalar
   // sweep moves a column index with each value: a float saved 3% of a wing
-  // step, not worth its copy.)
-  template <bool B, class V>
+  // step, not worth its copy.) `Upper`: `off` holds each block's upper
+  // triangle, see prepare_single_smoother.
+  template <bool B, class V, bool Upper = false>
   void precondition(const V* off, double omega, int threads, bool multigrid)
   {
     const int nt = team(threads);
@@ -912,10 +932,10 @@ private:
 #pragma omp parallel for schedule(static) num_threads(nt)
     for(long k = 0; k < nf; ++k)
       z_[std::size_t(k)] = Row{};
-    sweep<B>(z_, r_, off, omega, threads, true, false, true);
+    sweep<B, V, Upper>(z_, r_, off, omega, threads, true, false, true);
     if(multigrid)
-      coarse_correction<B>(off, threads, omega == 1);
-    sweep<B>(z_, r_, off, omega, threads, false, false);
+      coarse_correction<B, V, Upper>(off, threads, omega == 1);
+    sweep<B, V, Upper>(z_, r_, off, omega, threads, false, false);
   }
 
   // The single-precision copy of a block system's off-diagonal blocks for
@@ -923,22 +943,43 @@ private:
   // in [1e-30, 1e30], where a float keeps 24 bits of it (capped stiffness
   // reaches 1e250); false (and no copy) otherwise: the sweeps then read the
   // doubles.
+  //
+  // When every off-diagonal block is exactly symmetric (ball-vertex springs,
+  // springs along their edges: each element adds the same value to (r, c)
+  // and (c, r) in the same order), only each block's upper triangle is
+  // copied (single_upper_): 6 values of 9 in 3D, a third less for the sweeps
+  // to read, and the same products in the same order
+  // (subtract_symmetric_block_product), so the same bits.
   bool prepare_single_smoother(int threads)
   {
-    const std::size_t n = col_.size() * DD;
+    const std::size_t nb = col_.size();
     const double* v = values();
-    bool fits = true;
-#pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(&& : fits)
-    for(long q = 0; q < long(n); ++q) {
-      const double a = std::abs(v[q]);
-      fits = fits && (a == 0 || (a >= 1e-30 && a <= 1e30));
+    bool fits = true, symmetric = true;
+#pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(&& : fits, symmetric)
+    for(long q = 0; q < long(nb); ++q) {
+      const double* m = v + std::size_t(q) * DD;
+      for(int r = 0; r < D; ++r)
+        for(int c = 0; c < D; ++c) {
+          const double a = std::abs(m[r * D + c]);
+          fits = fits && (a == 0 || (a >= 1e-30 && a <= 1e30));
+          symmetric = symmetric && m[r * D + c] == m[c * D + r];
+        }
     }
+    single_upper_ = fits && symmetric;
     if(!fits)
       return false;
-    single_off_.resize(n);
+    const std::size_t w = single_upper_ ? UD : DD;
+    single_off_.resize(nb * w);
 #pragma omp parallel for schedule(static) num_threads(team(threads))
-    for(long q = 0; q < long(n); ++q)
-      single_off_[std::size_t(q)] = float(v[q]);
+    for(long q = 0; q < long(nb); ++q) {
+      const double* m = v + std::size_t(q) * DD;
+      float* out = &single_off_[std::size_t(q) * w];
+      if(single_upper_)
+        copy_upper_triangle<D>(m, out);
+      else
+        for(int k = 0; k < DD; ++k)
+          out[k] = float(m[k]);
+    }
     return true;
   }
 
@@ -947,7 +988,7 @@ private:
   // rows after it still at zero, so r - A z is -(sum over j > k of A_kj z_j):
   // the rows are numbered in sweep order (the rows of other blocks of k's
   // colour are not its neighbours), and only each row's upper part is read.
-  template <bool B, class V>
+  template <bool B, class V, bool Upper = false>
   void coarse_correction(const V* off, int threads, bool after_gauss_seidel)
   {
     const int nt = team(threads);
@@ -960,7 +1001,7 @@ private:
         for(Index q = upper_offsets_[std::size_t(k)]; q < row_offsets_[std::size_t(k) + 1]; ++q) {
           const Index j = col_[q];
           if constexpr(B)
-            subtract_block_product<D>(s, off + std::size_t(q) * DD, z_[j]);
+            subtract_off_block<Upper>(s, off, q, z_[j]);
           else
             for(int c = 0; c < D; ++c)
               s[c] -= double(off[q]) * z_[j][c];
@@ -1135,6 +1176,7 @@ private:
   std::vector<std::array<double, DD>> projectors_;
   std::vector<double> val_, bnd_val_, diag_, inv_diag_, blocks_, partial_;
   std::vector<float> single_off_; // prepare_single_smoother
+  bool single_upper_ = false;     // single_off_ holds upper triangles
   std::vector<Row> b_, x_, r_, z_, p_, q_, s_;
   Aggregation_multigrid<D> multigrid_;
   Rigid_body_multigrid<D> rigid_;

@@ -137,7 +137,8 @@ TEST_CASE("capped_math: all_finite from the bits agrees with std::isfinite", "[s
         for(double& x : v)
           x = value(random);
         v[at] = s;
-        const bool expected = std::all_of(v.begin(), v.begin() + long(length), [](double x) { return std::isfinite(x); });
+        const bool expected =
+            std::all_of(v.begin(), v.begin() + long(length), [](double x) { return std::isfinite(x); });
         agree += all_finite(v.data(), length) == expected;
         flagged += !expected;
         ++n;

@@ -578,19 +578,16 @@ TEST_CASE("solvers: the preconditioner is the symmetric Gauss-Seidel of the solv
   internal::Free_system<2> fs;
   fs.build(net, free, block, o);
   REQUIRE(fs.blocks() > 2 * fs.colours());
-  std::vector<double> k(net.number_of_edges(), 0.0); // block: no edge springs
-  if(system == 1) {
-    internal::assemble_block_system<2>(positions, Ball_vertex_stiffness{2.0}, k, fs, o.threads);
-  } else if(system == 2) {
-    for(std::size_t e = 0; e < k.size(); ++e) // the lineal springs of the torsional model
-      k[e] = 1.0 / std::hypot(net.points[net.edges[e][1]][0] - net.points[net.edges[e][0]][0],
-                              net.points[net.edges[e][1]][1] - net.points[net.edges[e][0]][1]);
-    internal::assemble_block_system<2>(positions, Torsional_stiffness{}, k, fs, o.threads);
-  } else {
+  std::vector<double> k(net.number_of_edges(), 0.0);
+  if(system != 1) // ball-vertex springs alone: no edge springs
     for(std::size_t e = 0; e < k.size(); ++e)
       k[e] = 1.0 + double(e % 5);
+  if(system == 1)
+    internal::assemble_block_system<2>(positions, Ball_vertex_stiffness{2.0}, k, fs, o.threads);
+  else if(system == 2)
+    internal::assemble_block_system<2>(positions, Torsional_stiffness{}, k, fs, o.threads);
+  else
     fs.load_scalar(net, k, o.threads);
-  }
   fs.set_positions(positions);
   const std::size_t n = fs.rows();
   const std::size_t w = block ? 4 : 1;

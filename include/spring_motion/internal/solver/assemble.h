@@ -194,7 +194,8 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
     model.add_element_matrix(p, Ke.data());
     // all of it, rows of constrained vertices too: a model that breaks
     // there breaks elsewhere on another step
-    SPRING_MOTION_ELEMENT_CHECK(all_finite(Ke.data(), Ke.size()), t, "element stiffness of element " << t << " is not finite");
+    SPRING_MOTION_ELEMENT_CHECK(all_finite(Ke.data(), Ke.size()), t,
+                                "element stiffness of element " << t << " is not finite");
   } catch(...) {
 #pragma omp critical(spring_motion_element_matrix_error)
     if(long(t) < first_bad) {

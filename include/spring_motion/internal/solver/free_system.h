@@ -858,11 +858,11 @@ private:
   }
 
   // What the preconditioner of a solve reads: the multigrid's coarse
-  // levels (`cycle`) and the sweeps' single-precision entries (`single`),
-  // stored as upper triangles (`upper`).
+  // levels (`cycle`) and the sweeps' single-precision entries (`single`;
+  // upper triangles when single_upper_).
   struct Preconditioner_state
   {
-    bool cycle = false, single = false, upper = false;
+    bool cycle = false, single = false;
   };
 
   // Loads the preconditioner `options` select for the loaded system.
@@ -892,7 +892,6 @@ private:
     Preconditioner_state pc;
     pc.cycle = mg && (B ? rigid_.number_of_levels() : multigrid_.number_of_levels()) > 0;
     pc.single = B && prepare_single_smoother(options.threads);
-    pc.upper = pc.single && single_upper_;
     return pc;
   }
 
@@ -903,8 +902,8 @@ private:
     const double omega = options.preconditioner_relaxation_factor;
     if constexpr(B)
       if(pc.single)
-        return pc.upper ? precondition<B, float, true>(single_off_.data(), omega, options.threads, pc.cycle)
-                        : precondition<B>(single_off_.data(), omega, options.threads, pc.cycle);
+        return single_upper_ ? precondition<B, float, true>(single_off_.data(), omega, options.threads, pc.cycle)
+                             : precondition<B>(single_off_.data(), omega, options.threads, pc.cycle);
     precondition<B>(values(), omega, options.threads, pc.cycle);
   }
 

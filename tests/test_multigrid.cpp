@@ -378,3 +378,105 @@ TEST_CASE("rigid-body multigrid: the coarse correction is symmetric and positive
   REQUIRE(mg.number_of_levels() >= 2);
   check_symmetric_positive([&](const Vec& u) { return rigid_correction(mg, u); }, s.A.rows(), 11);
 }
+
+namespace {
+
+// The factorisation and solve as plain row-by-row loops: each entry one sum
+// over k = 0, 1, ... (forward) or k = n-1, ..., i+1 (backward) in order.
+bool reference_cholesky(std::vector<double>& a, std::size_t n, double relative)
+{
+  for(std::size_t j = 0; j < n; ++j) {
+    double d = a[j * n + j];
+    const double own = d;
+    for(std::size_t k = 0; k < j; ++k)
+      d -= a[j * n + k] * a[j * n + k];
+    if(!(std::isfinite(d) && d > relative * own))
+      return false;
+    const double l = std::sqrt(d);
+    a[j * n + j] = l;
+    for(std::size_t i = j + 1; i < n; ++i) {
+      double s = a[i * n + j];
+      for(std::size_t k = 0; k < j; ++k)
+        s -= a[i * n + k] * a[j * n + k];
+      a[i * n + j] = s / l;
+    }
+  }
+  return true;
+}
+
+template <int M>
+void reference_cholesky_solve(const std::vector<double>& l, std::size_t n, const double* b, double* z)
+{
+  for(std::size_t i = 0; i < n; ++i)
+    for(int c = 0; c < M; ++c) {
+      double s = b[i * M + c];
+      for(std::size_t k = 0; k < i; ++k)
+        s -= l[i * n + k] * z[k * M + c];
+      z[i * M + c] = s / l[i * n + i];
+    }
+  for(std::size_t i = n; i-- > 0;)
+    for(int c = 0; c < M; ++c) {
+      double s = z[i * M + c];
+      for(std::size_t k = i + 1; k < n; ++k)
+        s -= l[k * n + i] * z[k * M + c];
+      z[i * M + c] = s / l[i * n + i];
+    }
+}
+
+template <int M>
+void check_dense_cholesky(std::size_t n, std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  // A = G G^T + n I: symmetric positive definite, entries of mixed signs
+  std::vector<double> g(n * n), a(n * n, 0.0);
+  for(double& v : g)
+    v = u(rng);
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t j = 0; j < n; ++j) {
+      for(std::size_t k = 0; k < n; ++k)
+        a[i * n + j] += g[i * n + k] * g[j * n + k];
+      a[i * n + j] += i == j ? double(n) : 0.0;
+    }
+  std::vector<double> ours = a, ref = a;
+  REQUIRE(internal::try_dense_cholesky(ours, n, 0.0));
+  REQUIRE(reference_cholesky(ref, n, 0.0));
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t j = 0; j <= i; ++j)
+      REQUIRE(ours[i * n + j] == ref[i * n + j]); // the same bits, not just close
+  std::vector<double> b(n * M), z(n * M), zr(n * M);
+  for(double& v : b)
+    v = u(rng);
+  internal::dense_cholesky_solve<M>(ours, n, b.data(), z.data());
+  reference_cholesky_solve<M>(ref, n, b.data(), zr.data());
+  for(std::size_t i = 0; i < n * M; ++i)
+    REQUIRE(z[i] == zr[i]);
+  // and it solves A z = b
+  for(std::size_t i = 0; i < n; ++i)
+    for(int c = 0; c < M; ++c) {
+      double r = b[i * M + c];
+      for(std::size_t j = 0; j < n; ++j)
+        r -= a[i * n + j] * z[j * M + c];
+      REQUIRE(std::abs(r) <= 1e-12 * double(n) * double(n));
+    }
+}
+
+} // namespace
+
+TEST_CASE("dense Cholesky: the interleaved rows give the bits of a row-by-row factorisation and solve",
+          "[solver][multigrid]")
+{
+  std::mt19937 rng(7);
+  // every remainder of the four interleaved rows, and more than one group
+  for(std::size_t n = 1; n <= 23; ++n) {
+    CAPTURE(n);
+    check_dense_cholesky<1>(n, rng);
+    check_dense_cholesky<3>(n, rng);
+  }
+  // a pivot at or below `relative` times its own diagonal entry is refused
+  std::vector<double> singular{1, 1, 1, 1};
+  CHECK_FALSE(internal::try_dense_cholesky(singular, 2, 0.0));
+  std::vector<double> weak{1, 1, 1, 1 + 1e-13};
+  CHECK_FALSE(internal::try_dense_cholesky(weak, 2, 1e-12));
+  std::vector<double> fine{1, 1, 1, 1 + 1e-11};
+  CHECK(internal::try_dense_cholesky(fine, 2, 1e-12));
+}

@@ -143,19 +143,39 @@ inline bool aggregate_strong_neighbours(std::size_t n, const Index* offsets, con
 /// factorisation.
 inline bool try_dense_cholesky(std::vector<double>& a, std::size_t n, double relative)
 {
+  // Each entry is one sum, in the order k = 0, 1, ..., whose additions wait
+  // for each other; the entries of column j below the diagonal are
+  // independent, so four rows are summed side by side (the same operations
+  // in the same order per entry: the same bits).
+  constexpr std::size_t w = 4;
   for(std::size_t j = 0; j < n; ++j) {
-    double d = a[j * n + j];
+    const double* J = &a[j * n];
+    double d = J[j];
     const double own = d;
     for(std::size_t k = 0; k < j; ++k)
-      d -= a[j * n + k] * a[j * n + k];
+      d -= J[k] * J[k];
     if(!(std::isfinite(d) && d > relative * own))
       return false;
     const double l = std::sqrt(d);
     a[j * n + j] = l;
-    for(std::size_t i = j + 1; i < n; ++i) {
+    std::size_t i = j + 1;
+    for(; i + w <= n; i += w) {
+      double* A[w];
+      double s[w];
+      for(std::size_t t = 0; t < w; ++t) {
+        A[t] = &a[(i + t) * n];
+        s[t] = A[t][j];
+      }
+      for(std::size_t k = 0; k < j; ++k)
+        for(std::size_t t = 0; t < w; ++t)
+          s[t] -= A[t][k] * J[k];
+      for(std::size_t t = 0; t < w; ++t)
+        A[t][j] = s[t] / l;
+    }
+    for(; i < n; ++i) {
       double s = a[i * n + j];
       for(std::size_t k = 0; k < j; ++k)
-        s -= a[i * n + k] * a[j * n + k];
+        s -= a[i * n + k] * J[k];
       a[i * n + j] = s / l;
     }
   }
@@ -173,7 +193,29 @@ inline void dense_cholesky(std::vector<double>& a, std::size_t n)
 template <int M>
 void dense_cholesky_solve(const std::vector<double>& l, std::size_t n, const double* b, double* z)
 {
-  for(std::size_t i = 0; i < n; ++i) {
+  // forward: rows i..i+3 share the terms k < i (four independent sums, as in
+  // try_dense_cholesky), then each takes its terms k >= i in order once the
+  // rows before it are solved: every sum in the order k = 0, 1, ...
+  constexpr std::size_t w = 4;
+  std::size_t i = 0;
+  for(; i + w <= n; i += w) {
+    std::array<std::array<double, M>, w> s;
+    for(std::size_t t = 0; t < w; ++t)
+      for(int c = 0; c < M; ++c)
+        s[t][std::size_t(c)] = b[(i + t) * M + c];
+    for(std::size_t k = 0; k < i; ++k)
+      for(std::size_t t = 0; t < w; ++t)
+        for(int c = 0; c < M; ++c)
+          s[t][std::size_t(c)] -= l[(i + t) * n + k] * z[k * M + c];
+    for(std::size_t t = 0; t < w; ++t) {
+      for(std::size_t k = i; k < i + t; ++k)
+        for(int c = 0; c < M; ++c)
+          s[t][std::size_t(c)] -= l[(i + t) * n + k] * z[k * M + c];
+      for(int c = 0; c < M; ++c)
+        z[(i + t) * M + c] = s[t][std::size_t(c)] / l[(i + t) * n + i + t];
+    }
+  }
+  for(; i < n; ++i) {
     std::array<double, M> s{};
     for(int c = 0; c < M; ++c)
       s[c] = b[i * M + c];

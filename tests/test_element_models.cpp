@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -545,4 +546,69 @@ TEST_CASE("deform with element models: a rigid translation of the boundary trans
     CHECK(worst_translation_error<2>(name, {0.3, -0.45}) < 1e-12);
     CHECK(worst_translation_error<3>(name, {0.3, -0.2, 0.5}) < 1e-12);
   }
+}
+
+namespace {
+
+// block (v, w), v <= w, of add_symmetric_blocks, entry (r, c)
+template <int D>
+double symmetric_block_entry(const std::vector<double>& S, int v, int w, int r, int c)
+{
+  constexpr int U = D * (D + 1) / 2;
+  const int a = std::min(v, w), b = std::max(v, w), i = std::min(r, c), j = std::max(r, c);
+  const int pair = a * (D + 1) - a * (a - 1) / 2 + (b - a);
+  return S[std::size_t(pair * U + i * D - i * (i - 1) / 2 + (j - i))];
+}
+
+template <int D, class Model>
+void check_symmetric_blocks(const Model& model, const Simplex<D>& p)
+{
+  constexpr int ND = (D + 1) * D;
+  const auto K = element_matrix<D>(model, p);
+  std::vector<double> S((D + 1) * (D + 2) / 2 * D * (D + 1) / 2, 0.0);
+  model.add_symmetric_blocks(p, S.data());
+  for(int v = 0; v <= D; ++v)
+    for(int w = 0; w <= D; ++w)
+      for(int r = 0; r < D; ++r)
+        for(int c = 0; c < D; ++c) // the same bits, not just close
+          REQUIRE(symmetric_block_entry<D>(S, v, w, r, c) == K[std::size_t((v * D + r) * ND + w * D + c)]);
+}
+
+} // namespace
+
+TEST_CASE("ball-vertex: the distinct blocks the assembly reads are the element matrix's values",
+          "[stiffness][ball_vertex]")
+{
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for(double exponent : {1.0, 2.0, 3.0}) {
+    Ball_vertex_stiffness m;
+    m.exponent = exponent;
+    const With_ball_vertex<Grid_scaled_stiffness> combined{{}, m};
+    for(const auto& p : {triangle, obtuse_triangle}) {
+      check_symmetric_blocks<2>(m, p);
+      check_symmetric_blocks<2>(combined, p);
+    }
+    for(const auto& p : {tetrahedron, sliver}) {
+      check_symmetric_blocks<3>(m, p);
+      check_symmetric_blocks<3>(combined, p);
+    }
+    for(int trial = 0; trial < 200; ++trial) {
+      Simplex<2> t;
+      Simplex<3> s;
+      for(auto& x : t)
+        for(double& c : x)
+          c = u(rng);
+      for(auto& x : s)
+        for(double& c : x)
+          c = u(rng);
+      check_symmetric_blocks<2>(m, t);
+      check_symmetric_blocks<3>(m, s);
+    }
+  }
+  // torsional blocks are not symmetric: the assembly reads its whole matrix
+  CHECK(internal::Has_symmetric_blocks<Ball_vertex_stiffness, 3>::value);
+  CHECK(internal::Has_symmetric_blocks<With_ball_vertex<Lineal_stiffness>, 2>::value);
+  CHECK_FALSE(internal::Has_symmetric_blocks<Torsional_stiffness, 2>::value);
+  CHECK_FALSE(internal::Has_symmetric_blocks<Torsional_stiffness, 3>::value);
 }

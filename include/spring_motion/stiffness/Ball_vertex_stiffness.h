@@ -118,21 +118,35 @@ struct Ball_vertex_stiffness
   void add_element_matrix(const std::array<std::array<double, 2>, 3>& p, double* K) const { add<2>(p, K); }
   void add_element_matrix(const std::array<std::array<double, 3>, 4>& p, double* K) const { add<3>(p, K); }
 
+  /// The same matrix by its distinct values: block (v, w) equals block (w,
+  /// v) and is symmetric, so the (D+1)(D+2)/2 blocks v <= w (in the order
+  /// (0,0), (0,1), ..., (D,D)), each as its upper triangle by rows, are added
+  /// to S. The assembly reads these instead of the whole matrix.
+  void add_symmetric_blocks(const std::array<std::array<double, 2>, 3>& p, double* S) const
+  {
+    blocks<2>(p, [&](int, int, int, int, int m, int pair, double b) { S[pair * 3 + m] += b; });
+  }
+  void add_symmetric_blocks(const std::array<std::array<double, 3>, 4>& p, double* S) const
+  {
+    blocks<3>(p, [&](int, int, int, int, int m, int pair, double b) { S[pair * 6 + m] += b; });
+  }
+
   Model_description description(int) const
   {
     return {"ball_vertex", {{"exponent", exponent}, {"weight", weight}}};
   }
 
 private:
-  // K += sum_i k_i a_i a_i^T with a_i = (n_i at vertex i, -b_v n_i at each
-  // other vertex v). Block (v, w) of that sum is sum_i k_i c_iv c_iw n_i n_i^T
-  // (c_ii = 1, c_iv = -b_v): symmetric and equal to block (w, v), so only
-  // the (D+1)(D+2)/2 blocks v <= w are formed, each from its D(D+1)/2
-  // distinct entries.
-  template <int D>
-  void add(const std::array<std::array<double, D>, D + 1>& p, double* K) const
+  // Block (v, w) of sum_i k_i a_i a_i^T, a_i = (n_i at vertex i, -b_v n_i at
+  // each other vertex v), is sum_i k_i c_iv c_iw n_i n_i^T (c_ii = 1, c_iv =
+  // -b_v): symmetric and equal to block (w, v), so only the (D+1)(D+2)/2
+  // blocks v <= w are formed, each from its D(D+1)/2 distinct entries, and
+  // each entry (r, q), r <= q, handed to out(v, w, r, q, m, pair, value) (m:
+  // its place in the upper triangle by rows, pair: the block's place among
+  // the blocks v <= w).
+  template <int D, class Out>
+  void blocks(const std::array<std::array<double, D>, D + 1>& p, Out out) const
   {
-    constexpr int ND = (D + 1) * D;
     constexpr int S = D * (D + 1) / 2;
     // The block solver inverts D x D sums of these matrices and of the edge
     // springs (up to 1/l^2): its determinant, a product of D such entries,
@@ -154,8 +168,8 @@ private:
           knn[std::size_t(i)][std::size_t(m)] = k * n[std::size_t(r)] * n[std::size_t(q)];
     }
     auto c = [&](int i, int v) { return v == i ? 1.0 : -alt[std::size_t(i)].foot[std::size_t(v)]; };
-    for(int v = 0; v <= D; ++v)
-      for(int w = v; w <= D; ++w) {
+    for(int v = 0, pair = 0; v <= D; ++v)
+      for(int w = v; w <= D; ++w, ++pair) {
         std::array<double, S> B{};
         for(int i = 0; i <= D; ++i) {
           const double f = c(i, v) * c(i, w);
@@ -163,18 +177,26 @@ private:
             B[std::size_t(m)] += f * knn[std::size_t(i)][std::size_t(m)];
         }
         for(int r = 0, m = 0; r < D; ++r)
-          for(int q = r; q < D; ++q, ++m) {
-            const double b = B[std::size_t(m)];
-            K[(v * D + r) * ND + w * D + q] += b;
-            if(q != r)
-              K[(v * D + q) * ND + w * D + r] += b;
-            if(w != v) {
-              K[(w * D + q) * ND + v * D + r] += b;
-              if(q != r)
-                K[(w * D + r) * ND + v * D + q] += b;
-            }
-          }
+          for(int q = r; q < D; ++q, ++m)
+            out(v, w, r, q, m, pair, B[std::size_t(m)]);
       }
+  }
+
+  // K += the whole matrix, each distinct value written to its places
+  template <int D>
+  void add(const std::array<std::array<double, D>, D + 1>& p, double* K) const
+  {
+    constexpr int ND = (D + 1) * D;
+    blocks<D>(p, [&](int v, int w, int r, int q, int, int, double b) {
+      K[(v * D + r) * ND + w * D + q] += b;
+      if(q != r)
+        K[(v * D + q) * ND + w * D + r] += b;
+      if(w != v) {
+        K[(w * D + q) * ND + v * D + r] += b;
+        if(q != r)
+          K[(w * D + r) * ND + v * D + q] += b;
+      }
+    });
   }
 };
 

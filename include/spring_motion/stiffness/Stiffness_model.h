@@ -78,6 +78,14 @@ struct Model_description
 /// void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, double* K) const;
 /// \endcode
 /// and couples the coordinate components: the solver then works on D x D blocks.
+/// When every D x D block (v, w) of that matrix is symmetric and equal to
+/// block (w, v) (ball-vertex springs), the model may also give only those
+/// distinct values, which the assembly then reads instead:
+/// \code
+/// // adds blocks (v, w), v <= w, in the order (0,0), (0,1), ..., (D,D), each
+/// // as its upper triangle by rows (D(D+1)/2 values), to S
+/// void add_symmetric_blocks(const std::array<std::array<double, D>, D + 1>& p, double* S) const;
+/// \endcode
 /// An element model may also say how its edge springs act in that system
 /// (default `Edge_spring_form::per_coordinate`):
 /// \code
@@ -106,6 +114,14 @@ struct Is_element_model<Model, D,
                         std::void_t<decltype(std::declval<const Model&>().add_element_matrix(
                             std::declval<const std::array<std::array<double, D>, D + 1>&>(),
                             std::declval<double*>()))>> : std::true_type {};
+
+template <class Model, int D, class = void>
+struct Has_symmetric_blocks : std::false_type {};
+template <class Model, int D>
+struct Has_symmetric_blocks<Model, D,
+                            std::void_t<decltype(std::declval<const Model&>().add_symmetric_blocks(
+                                std::declval<const std::array<std::array<double, D>, D + 1>&>(),
+                                std::declval<double*>()))>> : std::true_type {};
 
 template <class Model, class = void>
 struct Has_edge_spring_form : std::false_type {};

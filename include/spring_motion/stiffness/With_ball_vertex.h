@@ -51,6 +51,14 @@ struct With_ball_vertex
   {
     ball_vertex.add_element_matrix(p, K);
   }
+  void add_symmetric_blocks(const std::array<std::array<double, 2>, 3>& p, double* S) const
+  {
+    ball_vertex.add_symmetric_blocks(p, S);
+  }
+  void add_symmetric_blocks(const std::array<std::array<double, 3>, 4>& p, double* S) const
+  {
+    ball_vertex.add_symmetric_blocks(p, S);
+  }
 
   Model_description description(int dimension) const
   {

@@ -188,10 +188,20 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
 {
   constexpr int DD = D * D;
   constexpr int ND = (D + 1) * D;
-  std::array<double, ND * ND> Ke;
+  // a model that gives only the distinct blocks (Has_symmetric_blocks)
+  // fills the 60 values of a tetrahedron, not the 144 of its whole matrix;
+  // each block is then read from them (the same values as from the whole
+  // matrix, which holds each distinct value once per place)
+  constexpr bool symmetric = Has_symmetric_blocks<Model, D>::value;
+  constexpr int S = D * (D + 1) / 2;
+  constexpr int size = symmetric ? (D + 1) * (D + 2) / 2 * S : ND * ND;
+  std::array<double, size> Ke;
   Ke.fill(0.0);
   try {
-    model.add_element_matrix(p, Ke.data());
+    if constexpr(symmetric)
+      model.add_symmetric_blocks(p, Ke.data());
+    else
+      model.add_element_matrix(p, Ke.data());
     // all of it, rows of constrained vertices too: a model that breaks
     // there breaks elsewhere on another step
     SPRING_MOTION_ELEMENT_CHECK(all_finite(Ke.data(), Ke.size()), t,
@@ -210,9 +220,15 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
       if(dest == Free_system<D>::none)
         continue;
       double* out = blocks + std::size_t(dest) * DD;
-      for(int r = 0; r < D; ++r)
-        for(int c = 0; c < D; ++c)
-          out[r * D + c] += Ke[std::size_t((a * D + r) * ND + (b * D + c))];
+      if constexpr(symmetric) {
+        const double* B = &Ke[std::size_t(upper_triangle_index<D + 1>(std::min(a, b), std::max(a, b)) * S)];
+        for(int r = 0; r < D; ++r)
+          for(int c = 0; c < D; ++c)
+            out[r * D + c] += B[r <= c ? upper_triangle_index<D>(r, c) : upper_triangle_index<D>(c, r)];
+      } else
+        for(int r = 0; r < D; ++r)
+          for(int c = 0; c < D; ++c)
+            out[r * D + c] += Ke[std::size_t((a * D + r) * ND + (b * D + c))];
     }
 }
 

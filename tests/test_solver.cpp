@@ -639,6 +639,7 @@ TEST_CASE("solvers: the preconditioner is the symmetric Gauss-Seidel of the solv
       o.preconditioner_relaxation_factor = omega;
       const auto z = fs.preconditioned(r1, o);
       CHECK(fs.smoother_read_upper_triangles() == symmetric_blocks);
+      CHECK(fs.product_read_upper_triangles() == symmetric_blocks);
       const auto ref = ssor(r1, omega);
       double error = 0;
       for(std::size_t row = 0; row < n; ++row)
@@ -658,12 +659,13 @@ TEST_CASE("solvers: the preconditioner is the symmetric Gauss-Seidel of the solv
 
 }
 
-// The preconditioner's sweeps read a symmetric block from its upper triangle
-// (6 of 9 values in 3D): the product must be that of the full block, bit for
-// bit, so that the solver's results do not depend on the storage. The blocks
-// are converted in one pass and multiplied in another, as in the solver (GCC
-// 12 at -O3, seeing a float stored and read back in one basic block, was
-// seen to use the double it was converted from).
+// The preconditioner's sweeps (in single precision) and conjugate gradients'
+// products (in double) read a symmetric block from its upper triangle (6 of 9
+// values in 3D): the product must be that of the full block, bit for bit, so
+// that the solver's results do not depend on the storage. The blocks are
+// converted in one pass and multiplied in another, as in the solver (GCC 12
+// at -O3, seeing a float stored and read back in one basic block, was seen to
+// use the double it was converted from).
 template <int D, class T>
 void check_upper_triangle_product(std::mt19937_64& random)
 {
@@ -683,7 +685,7 @@ void check_upper_triangle_product(std::mt19937_64& random)
     full[k] = T(m[k]);
   for(std::size_t t = 0; t < n; ++t)
     internal::copy_upper_triangle<D>(&m[t * D * D], &upper[t * U]);
-  std::size_t same = 0;
+  std::size_t same = 0, same_product = 0;
   for(std::size_t t = 0; t < n; ++t) {
     std::array<double, D> x, a, b;
     for(int c = 0; c < D; ++c) {
@@ -693,8 +695,14 @@ void check_upper_triangle_product(std::mt19937_64& random)
     internal::subtract_block_product<D>(a, &full[t * D * D], x);
     internal::subtract_symmetric_block_product<D>(b, &upper[t * U], x);
     same += std::memcmp(a.data(), b.data(), sizeof a) == 0;
+    if constexpr(std::is_same<T, double>::value) {
+      const auto y = internal::block_product<D>(&full[t * D * D], x);
+      const auto z = internal::symmetric_block_product<D>(&upper[t * U], x);
+      same_product += std::memcmp(y.data(), z.data(), sizeof y) == 0;
+    }
   }
   CHECK(same == n);
+  CHECK(same_product == (std::is_same<T, double>::value ? n : 0));
 }
 
 TEST_CASE("solvers: a symmetric block read from its upper triangle gives the full block's product, bit for bit",

@@ -224,7 +224,7 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
         const double* B = &Ke[std::size_t(upper_triangle_index<D + 1>(std::min(a, b), std::max(a, b)) * S)];
         for(int r = 0; r < D; ++r)
           for(int c = 0; c < D; ++c)
-            out[r * D + c] += B[r <= c ? upper_triangle_index<D>(r, c) : upper_triangle_index<D>(c, r)];
+            out[r * D + c] += symmetric_entry<D>(B, r, c);
       } else
         for(int r = 0; r < D; ++r)
           for(int c = 0; c < D; ++c)

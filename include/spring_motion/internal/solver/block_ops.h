@@ -122,6 +122,14 @@ inline void copy_upper_triangle(const double* m, T* u)
       u[upper_triangle_index<D>(r, c)] = T(m[r * D + c]);
 }
 
+/// Entry (r, c), any r and c, of a symmetric D x D block stored as its upper
+/// triangle.
+template <int D, class T>
+constexpr T symmetric_entry(const T* U, int r, int c)
+{
+  return U[r <= c ? upper_triangle_index<D>(r, c) : upper_triangle_index<D>(c, r)];
+}
+
 /// s -= M x for a symmetric D x D block M stored as its upper triangle (of
 /// doubles, or of floats read as doubles): the products and sums of
 /// subtract_block_product on the full block, in its order, so the same bits.
@@ -130,7 +138,7 @@ inline void subtract_symmetric_block_product(std::array<double, D>& s, const T* 
 {
   for(int r = 0; r < D; ++r)
     for(int c = 0; c < D; ++c)
-      s[r] -= double(U[r <= c ? upper_triangle_index<D>(r, c) : upper_triangle_index<D>(c, r)]) * x[c];
+      s[r] -= double(symmetric_entry<D>(U, r, c)) * x[c];
 }
 
 /// M x for a D x D block M.
@@ -141,6 +149,19 @@ inline std::array<double, D> block_product(const double* M, const std::array<dou
   for(int r = 0; r < D; ++r)
     for(int c = 0; c < D; ++c)
       y[r] += M[r * D + c] * x[c];
+  return y;
+}
+
+/// M x for a symmetric D x D block M of doubles stored as its upper
+/// triangle: the products and sums of block_product on the full block, in
+/// its order, so the same bits.
+template <int D>
+inline std::array<double, D> symmetric_block_product(const double* U, const std::array<double, D>& x)
+{
+  std::array<double, D> y{};
+  for(int r = 0; r < D; ++r)
+    for(int c = 0; c < D; ++c)
+      y[r] += symmetric_entry<D>(U, r, c) * x[c];
   return y;
 }
 

@@ -107,6 +107,10 @@ public:
   /// Whether the last block preconditioner read single-precision copies of
   /// the off-diagonal blocks' upper triangles (all of them were symmetric).
   bool smoother_read_upper_triangles() const { return single_upper_; }
+  /// Whether the last block solve's matrix products read the off-diagonal
+  /// blocks' upper triangles (in double precision; all of them were
+  /// symmetric).
+  bool product_read_upper_triangles() const { return product_upper_; }
   const double* diagonal() const { return block_ ? blocks_.data() : diag_.data(); }
   const std::vector<Row>& rhs() const { return b_; }
   const std::vector<Row>& solution() const { return x_; }
@@ -330,6 +334,7 @@ public:
   /// a singular or non-finite block throws Vertex_error naming its vertex.
   void finish_block_load(int threads)
   {
+    single_fits_ = product_upper_ = false; // the copies of the old values are stale
     const long nf = long(order_.size());
     long bad = nf;
 #pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(min : bad)
@@ -426,9 +431,10 @@ public:
       return {};
     r_ = r;
     z_.resize(r.size());
-    if(block_)
+    if(block_) {
+      prepare_block_copies(options.threads);
       apply_preconditioner<true>(load_preconditioner<true>(options), options);
-    else
+    } else
       apply_preconditioner<false>(load_preconditioner<false>(options), options);
     return z_;
   }
@@ -671,11 +677,16 @@ private:
   {
     if constexpr(B) {
       Row y = block_product<D>(&blocks_[k * DD], x[k]);
-      for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q) {
-        const Row t = block_product<D>(&blocks_[off_block(q) * DD], x[col_[q]]);
+      auto add = [&](const Row& t) {
         for(int c = 0; c < D; ++c)
           y[c] += t[c];
-      }
+      };
+      if(product_upper_)
+        for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q)
+          add(symmetric_block_product<D>(&upper_off_[std::size_t(q) * UD], x[col_[q]]));
+      else
+        for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q)
+          add(block_product<D>(&blocks_[off_block(q) * DD], x[col_[q]]));
       return y;
     } else {
       Row s{};
@@ -804,6 +815,8 @@ private:
     z_.resize(order_.size());
     p_.resize(order_.size());
     q_.resize(order_.size());
+    if constexpr(B)
+      prepare_block_copies(threads);
     // r = b - A x
 #pragma omp parallel for schedule(static) num_threads(nt)
     for(long k = 0; k < nf; ++k) {
@@ -891,7 +904,7 @@ private:
     }
     Preconditioner_state pc;
     pc.cycle = mg && (B ? rigid_.number_of_levels() : multigrid_.number_of_levels()) > 0;
-    pc.single = B && prepare_single_smoother(options.threads);
+    pc.single = B && single_fits_;
     return pc;
   }
 
@@ -915,14 +928,14 @@ private:
   // (omega in (0, 2)).
   //
   // The sweeps read the off-diagonal entries from `off`: for block systems
-  // their copy in single precision when it was made (prepare_single_smoother),
+  // their copy in single precision when it was made (prepare_block_copies),
   // which halves the bytes a block sweep moves, and a sweep is bound by those
   // bytes. M stays symmetric (a block and its transpose round alike) and close
   // to the double one; conjugate gradients' own products and the stopping
   // test stay in double, so the solution's accuracy is the same. (A scalar
   // sweep moves a column index with each value: a float saved 3% of a wing
   // step, not worth its copy.) `Upper`: `off` holds each block's upper
-  // triangle, see prepare_single_smoother.
+  // triangle, see prepare_block_copies.
   template <bool B, class V, bool Upper = false>
   void precondition(const V* off, double omega, int threads, bool multigrid)
   {
@@ -937,49 +950,63 @@ private:
     sweep<B, V, Upper>(z_, r_, off, omega, threads, false, false);
   }
 
-  // The single-precision copy of a block system's off-diagonal blocks for
-  // the preconditioner's sweeps, made when every entry is 0 or of magnitude
-  // in [1e-30, 1e30], where a float keeps 24 bits of it (capped stiffness
-  // reaches 1e250); false (and no copy) otherwise: the sweeps then read the
-  // doubles.
+  // The copies of a block system's off-diagonal blocks that a solve reads
+  // instead of the blocks themselves, made once per solve.
   //
   // When every off-diagonal block is exactly symmetric (ball-vertex springs,
   // springs along their edges: each element adds the same value to (r, c)
-  // and (c, r) in the same order), only each block's upper triangle is
-  // copied (single_upper_): 6 values of 9 in 3D, a third less for the sweeps
-  // to read, and the same products in the same order
-  // (subtract_symmetric_block_product), so the same bits.
-  bool prepare_single_smoother(int threads)
+  // and (c, r) in the same order), conjugate gradients' products read each
+  // block's upper triangle in double precision (upper_off_, product_upper_):
+  // 6 values of 9 in 3D, and a product is bound by the bytes it reads; the
+  // same products in the same order (symmetric_block_product), so the same
+  // bits.
+  //
+  // The preconditioner's sweeps read a single-precision copy (single_off_),
+  // made when every entry is 0 or of magnitude in [1e-30, 1e30], where a
+  // float keeps 24 bits of it (capped stiffness reaches 1e250; otherwise the
+  // sweeps read the doubles, single_fits_ false); of the upper triangles too
+  // when the blocks are symmetric (single_upper_), with the same products in
+  // the same order (subtract_symmetric_block_product).
+  //
+  // Both upper triangles are written in the pass that checks the blocks
+  // (each block's float copy only when its own values fit, as a conversion
+  // out of range traps under feenableexcept); blocks found not symmetric
+  // (torsional springs) are copied whole in a second pass.
+  void prepare_block_copies(int threads)
   {
     const std::size_t nb = col_.size();
     const double* v = values();
     bool fits = true, symmetric = true;
+    upper_off_.resize(nb * UD);
+    single_off_.resize(nb * UD);
 #pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(&& : fits, symmetric)
     for(long q = 0; q < long(nb); ++q) {
       const double* m = v + std::size_t(q) * DD;
+      bool block_fits = true;
       for(int r = 0; r < D; ++r)
         for(int c = 0; c < D; ++c) {
           const double a = std::abs(m[r * D + c]);
-          fits = fits && (a == 0 || (a >= 1e-30 && a <= 1e30));
+          block_fits = block_fits && (a == 0 || (a >= 1e-30 && a <= 1e30));
           symmetric = symmetric && m[r * D + c] == m[c * D + r];
         }
+      fits = fits && block_fits;
+      copy_upper_triangle<D>(m, &upper_off_[std::size_t(q) * UD]);
+      if(block_fits)
+        copy_upper_triangle<D>(m, &single_off_[std::size_t(q) * UD]);
     }
+    single_fits_ = fits;
     single_upper_ = fits && symmetric;
-    if(!fits)
-      return false;
-    const std::size_t w = single_upper_ ? UD : DD;
-    single_off_.resize(nb * w);
+    product_upper_ = symmetric;
+    if(!fits || symmetric)
+      return;
+    single_off_.resize(nb * DD);
 #pragma omp parallel for schedule(static) num_threads(team(threads))
     for(long q = 0; q < long(nb); ++q) {
       const double* m = v + std::size_t(q) * DD;
-      float* out = &single_off_[std::size_t(q) * w];
-      if(single_upper_)
-        copy_upper_triangle<D>(m, out);
-      else
-        for(int k = 0; k < DD; ++k)
-          out[k] = float(m[k]);
+      float* out = &single_off_[std::size_t(q) * DD];
+      for(int k = 0; k < DD; ++k)
+        out[k] = float(m[k]);
     }
-    return true;
   }
 
   // z += correction P cycle(P^T (r - A z)). After a forward Gauss-Seidel
@@ -1174,8 +1201,11 @@ private:
   std::vector<Index> projector_of_row_;          // empty, or one per row: into projectors_ or none
   std::vector<std::array<double, DD>> projectors_;
   std::vector<double> val_, bnd_val_, diag_, inv_diag_, blocks_, partial_;
-  std::vector<float> single_off_; // prepare_single_smoother
-  bool single_upper_ = false;     // single_off_ holds upper triangles
+  std::vector<float> single_off_;   // prepare_block_copies
+  bool single_fits_ = false;        // single_off_ holds this load's values
+  bool single_upper_ = false;       // single_off_ holds upper triangles
+  std::vector<double> upper_off_;   // prepare_block_copies
+  bool product_upper_ = false;      // upper_off_ holds this load's values, apply reads it
   std::vector<Row> b_, x_, r_, z_, p_, q_, s_;
   Aggregation_multigrid<D> multigrid_;
   Rigid_body_multigrid<D> rigid_;

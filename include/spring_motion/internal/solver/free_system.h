@@ -105,8 +105,9 @@ public:
   /// value per nonzero and per row; block: D*D each, row-major.
   const double* values() const { return block_ ? blocks_.data() + order_.size() * DD : val_.data(); }
   /// Whether the last block preconditioner read single-precision copies of
-  /// the off-diagonal blocks' upper triangles (all of them were symmetric).
-  bool smoother_read_upper_triangles() const { return single_upper_; }
+  /// the off-diagonal blocks' upper triangles (all of them were symmetric
+  /// and fit a float).
+  bool smoother_read_upper_triangles() const { return single_fits_ && product_upper_; }
   /// Whether the last block solve's matrix products read the off-diagonal
   /// blocks' upper triangles (in double precision; all of them were
   /// symmetric).
@@ -872,7 +873,7 @@ private:
 
   // What the preconditioner of a solve reads: the multigrid's coarse
   // levels (`cycle`) and the sweeps' single-precision entries (`single`;
-  // upper triangles when single_upper_).
+  // upper triangles when the blocks are symmetric, product_upper_).
   struct Preconditioner_state
   {
     bool cycle = false, single = false;
@@ -915,8 +916,8 @@ private:
     const double omega = options.preconditioner_relaxation_factor;
     if constexpr(B)
       if(pc.single)
-        return single_upper_ ? precondition<B, float, true>(single_off_.data(), omega, options.threads, pc.cycle)
-                             : precondition<B>(single_off_.data(), omega, options.threads, pc.cycle);
+        return product_upper_ ? precondition<B, float, true>(single_off_.data(), omega, options.threads, pc.cycle)
+                              : precondition<B>(single_off_.data(), omega, options.threads, pc.cycle);
     precondition<B>(values(), omega, options.threads, pc.cycle);
   }
 
@@ -965,7 +966,7 @@ private:
   // made when every entry is 0 or of magnitude in [1e-30, 1e30], where a
   // float keeps 24 bits of it (capped stiffness reaches 1e250; otherwise the
   // sweeps read the doubles, single_fits_ false); of the upper triangles too
-  // when the blocks are symmetric (single_upper_), with the same products in
+  // when the blocks are symmetric (product_upper_), with the same products in
   // the same order (subtract_symmetric_block_product).
   //
   // Both upper triangles are written in the pass that checks the blocks
@@ -995,7 +996,6 @@ private:
         copy_upper_triangle<D>(m, &single_off_[std::size_t(q) * UD]);
     }
     single_fits_ = fits;
-    single_upper_ = fits && symmetric;
     product_upper_ = symmetric;
     if(!fits || symmetric)
       return;
@@ -1202,8 +1202,7 @@ private:
   std::vector<std::array<double, DD>> projectors_;
   std::vector<double> val_, bnd_val_, diag_, inv_diag_, blocks_, partial_;
   std::vector<float> single_off_;   // prepare_block_copies
-  bool single_fits_ = false;        // single_off_ holds this load's values
-  bool single_upper_ = false;       // single_off_ holds upper triangles
+  bool single_fits_ = false;        // single_off_ holds this load's values (upper triangles if product_upper_)
   std::vector<double> upper_off_;   // prepare_block_copies
   bool product_upper_ = false;      // upper_off_ holds this load's values, apply reads it
   std::vector<Row> b_, x_, r_, z_, p_, q_, s_;

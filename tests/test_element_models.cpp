@@ -407,6 +407,15 @@ TEST_CASE("torsional 3D: element matrix = Hessian of the torsion energy at froze
     CHECK(K2[k] == Approx(2 * K1[k]).margin(1e-15 * max_abs(K1)));
   CHECK(m(2.0, nullptr, 0, Stiffness_context{3, 1}) == 0.5);
   CHECK(internal::edge_spring_form(m) == Edge_spring_form::per_coordinate);
+  // the element matrix is added to what K holds (the assembly may hand a
+  // matrix that other terms already filled)
+  std::vector<double> K0(144), K3(144);
+  for(std::size_t k = 0; k < K0.size(); ++k)
+    K3[k] = K0[k] = double(k % 13) - 6;
+  m.add_element_matrix(sliver, K3.data());
+  const auto Ks = element_matrix<3>(m, sliver);
+  for(std::size_t k = 0; k < K3.size(); ++k)
+    CHECK(K3[k] - K0[k] == Approx(Ks[k]).margin(1e-13 * max_abs(Ks)));
 }
 
 TEST_CASE("torsional 3D: the sliver's flattening costs far more than in a well-shaped tetrahedron",

@@ -895,8 +895,8 @@ private:
         for(std::size_t r = 0; r < order_.size(); ++r)
           row_points_[r] = (*positions_)[order_[r]];
         if(!rigid_.built())
-          rigid_.build(fine, row_points_.data());
-        rigid_.load(fine, row_points_.data());
+          rigid_.build(fine, row_points_.data(), options.threads);
+        rigid_.load(fine, row_points_.data(), options.threads);
       } else {
         if(!multigrid_.built())
           multigrid_.build(fine);
@@ -1021,7 +1021,10 @@ private:
     const long nf = long(order_.size());
     s_.resize(order_.size());
     if(after_gauss_seidel) {
-#pragma omp parallel for schedule(static) num_threads(nt)
+      // Rows of the first colours hold most of the entries after them in the
+      // solver's order, the last colours' rows almost none: equal ranges of
+      // rows would leave one thread most of the work.
+#pragma omp parallel for schedule(dynamic, 256) num_threads(nt)
       for(long k = 0; k < nf; ++k) {
         Row s{};
         for(Index q = upper_offsets_[std::size_t(k)]; q < row_offsets_[std::size_t(k) + 1]; ++q) {
@@ -1044,8 +1047,8 @@ private:
     }
     const double a = multigrid_.parameters.correction;
     if constexpr(B) {
-      rigid_.restrict_from(s_);
-      rigid_.cycle();
+      rigid_.restrict_from(s_, threads);
+      rigid_.cycle(threads);
 #pragma omp parallel for schedule(static) num_threads(nt)
       for(long k = 0; k < nf; ++k) {
         const Row e = rigid_.correction(std::size_t(k));

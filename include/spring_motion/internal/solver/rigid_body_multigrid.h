@@ -6,11 +6,13 @@
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/internal/solver/aggregation_multigrid.h>
 #include <spring_motion/internal/solver/block_ops.h>
+#include <spring_motion/internal/solver/threads.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <vector>
 
 namespace spring_motion {
@@ -41,8 +43,13 @@ namespace internal {
 /// W_b. Every level's matrix is the Galerkin product P^T A P of the level
 /// above, recomputed from the new values and positions at every `load`;
 /// the aggregates are chosen once, at `build`. The coarsest level is solved
-/// by a dense Cholesky factorisation. Serial and in a fixed order: the result
-/// does not depend on the thread count.
+/// by a dense Cholesky factorisation.
+///
+/// The result does not depend on the thread count: the Gauss-Seidel sweeps
+/// of the coarse levels run serially, and every other loop (the Galerkin
+/// products, the restrictions, the prolongations) runs over the aggregates
+/// and sums each aggregate's values over its members in increasing order,
+/// the order of a serial loop over the members.
 template <int D>
 class Rigid_body_multigrid
 {
@@ -62,7 +69,7 @@ public:
 
   /// Chooses the aggregates of every level from the fine block matrix and
   /// the positions of its rows.
-  void build(const Csr_view& fine, const Row* points)
+  void build(const Csr_view& fine, const Row* points, int threads = 1)
   {
     SPRING_MOTION_CHECK(fine.block, "rigid-body multigrid: the fine system must have D x D blocks");
     levels_.clear();
@@ -104,33 +111,46 @@ public:
       L.z.resize(L.n);
       L.centre.resize(L.n);
       L.offset.resize(n);
+      L.member_offsets.assign(L.n + 1, 0);
+      for(const Index a : L.parent_of)
+        ++L.member_offsets[std::size_t(a) + 1];
+      std::partial_sum(L.member_offsets.begin(), L.member_offsets.end(), L.member_offsets.begin());
+      L.members.resize(n);
+      std::vector<Index> next(L.member_offsets.begin(), L.member_offsets.end() - 1);
+      for(std::size_t i = 0; i < n; ++i)
+        L.members[next[L.parent_of[i]]++] = Index(i);
       levels_.push_back(std::move(L));
       // this level's values, to aggregate the next one
-      load_level(levels_.size() - 1, fine, points);
+      load_level(levels_.size() - 1, fine, points, threads);
       n = levels_.back().n;
     }
   }
 
   /// Recomputes every level's values from the fine matrix (same pattern as
   /// in `build`) and the positions of its rows, and factors the coarsest.
-  void load(const Csr_view& fine, const Row* points)
+  void load(const Csr_view& fine, const Row* points, int threads = 1)
   {
     for(std::size_t l = 0; l < levels_.size(); ++l)
-      load_level(l, fine, points);
+      load_level(l, fine, points, threads);
     factor_coarsest();
   }
 
   /// level 0's right-hand side from the fine residual: P^T r
-  void restrict_from(const std::vector<Row>& fine_residual)
+  void restrict_from(const std::vector<Row>& fine_residual, int threads = 1)
   {
     Level& c = levels_.front();
-    std::fill(c.rhs.begin(), c.rhs.end(), Coarse_row{});
-    for(std::size_t i = 0; i < fine_residual.size(); ++i)
-      add_restricted<D>(fine_residual[i].data(), c.offset[i], c.rhs[c.parent_of[i]]);
+    const long na = long(c.n);
+#pragma omp parallel for schedule(static) num_threads(team(0, threads))
+    for(long a = 0; a < na; ++a) {
+      Coarse_row rc{};
+      for(Index m = c.member_offsets[std::size_t(a)]; m < c.member_offsets[std::size_t(a) + 1]; ++m)
+        add_restricted<D>(fine_residual[c.members[m]].data(), c.offset[c.members[m]], rc);
+      c.rhs[std::size_t(a)] = rc;
+    }
   }
 
   /// Solves approximately on level 0 (a V-cycle over the coarse levels).
-  void cycle() { cycle(0); }
+  void cycle(int threads = 1) { cycle(0, threads); }
 
   /// (P z)_i: the displacement of fine row i by level 0's solution z.
   Row correction(std::size_t i) const
@@ -167,7 +187,18 @@ private:
     std::vector<Coarse_row> rhs, z;
     std::vector<Row> centre;                    // per unknown
     std::vector<Row> offset;                    // per finer unknown: its position minus its aggregate's centre
+    std::vector<Index> member_offsets, members; // per unknown: the finer unknowns it aggregates, increasing
   };
+
+  // The team for a loop over level l's aggregates or the finer unknowns they
+  // aggregate, sized by those finer unknowns. thread_count's threshold is in
+  // rows of a dozen or so entries (a fine block row counts as one); an entry
+  // of a coarse level holds RR values, so its row counts as RR rows.
+  int team(std::size_t l, int threads) const
+  {
+    const std::size_t finer = levels_[l].parent_of.size();
+    return thread_count(threads, l == 0 ? finer : finer * RR);
+  }
 
   // Frobenius norm of the translational D x D part of an R x R block
   static double translation_norm(const double* m)
@@ -261,46 +292,55 @@ private:
 
   // level l's centres, offsets and values from the level above (the fine
   // matrix for l = 0)
-  void load_level(std::size_t l, const Csr_view& fine, const Row* points)
+  void load_level(std::size_t l, const Csr_view& fine, const Row* points, int threads)
   {
     Level& L = levels_[l];
-    const std::size_t n = L.parent_of.size();
     const Row* p = l == 0 ? points : levels_[l - 1].centre.data();
-    std::vector<double> count(L.n, 0.0);
-    std::fill(L.centre.begin(), L.centre.end(), Row{});
-    for(std::size_t i = 0; i < n; ++i) {
-      const Index a = L.parent_of[i];
-      count[a] += 1;
-      for(int c = 0; c < D; ++c)
-        L.centre[a][c] += p[i][c];
+    const long na = long(L.n), n = long(L.parent_of.size());
+    bool definite = true;
+#pragma omp parallel num_threads(team(l, threads)) reduction(&& : definite)
+    {
+#pragma omp for schedule(static)
+      for(long a = 0; a < na; ++a) {
+        Row c{};
+        for(Index m = L.member_offsets[std::size_t(a)]; m < L.member_offsets[std::size_t(a) + 1]; ++m)
+          for(int k = 0; k < D; ++k)
+            c[k] += p[L.members[m]][k];
+        const double count = double(L.member_offsets[std::size_t(a) + 1] - L.member_offsets[std::size_t(a)]);
+        for(int k = 0; k < D; ++k)
+          c[k] /= count;
+        L.centre[std::size_t(a)] = c;
+      }
+#pragma omp for schedule(static)
+      for(long i = 0; i < n; ++i)
+        for(int k = 0; k < D; ++k)
+          L.offset[std::size_t(i)][k] = p[i][k] - L.centre[L.parent_of[std::size_t(i)]][k];
+#pragma omp for schedule(static)
+      for(long a = 0; a < na; ++a) {
+        if(l == 0)
+          sum_galerkin<D>(L, std::size_t(a), fine.offsets, fine.col, fine.values, fine.diag);
+        else {
+          const Level& f = levels_[l - 1];
+          sum_galerkin<R>(L, std::size_t(a), f.offsets.data(), f.col.data(), f.values.data(), f.diag.data());
+        }
+        definite = invert_diagonal(L, std::size_t(a)) && definite;
+      }
     }
-    for(std::size_t a = 0; a < L.n; ++a)
-      for(int c = 0; c < D; ++c)
-        L.centre[a][c] /= count[a];
-    for(std::size_t i = 0; i < n; ++i)
-      for(int c = 0; c < D; ++c)
-        L.offset[i][c] = p[i][c] - L.centre[L.parent_of[i]][c];
-    std::fill(L.values.begin(), L.values.end(), 0.0);
-    std::fill(L.diag.begin(), L.diag.end(), 0.0);
-    if(l == 0)
-      sum_galerkin<D>(L, fine.offsets, fine.col, fine.values, fine.diag);
-    else {
-      const Level& f = levels_[l - 1];
-      sum_galerkin<R>(L, f.offsets.data(), f.col.data(), f.values.data(), f.diag.data());
-    }
-    for(std::size_t a = 0; a < L.n; ++a)
-      invert_diagonal(L, a);
+    SPRING_MOTION_CHECK(definite, "multigrid: a coarse diagonal block is not positive definite");
   }
 
-  // the Galerkin product over the finer level's entries (F x F blocks)
+  // aggregate a's row of the Galerkin product, summed over its members'
+  // entries of the finer level (F x F blocks)
   template <int F>
-  static void sum_galerkin(Level& L, const Index* offsets, const Index* col, const double* values,
+  static void sum_galerkin(Level& L, std::size_t a, const Index* offsets, const Index* col, const double* values,
                            const double* diag)
   {
-    const std::size_t n = L.parent_of.size();
-    for(std::size_t i = 0; i < n; ++i) {
+    double* dA = &L.diag[a * RR];
+    std::fill(dA, dA + RR, 0.0);
+    std::fill(L.values.begin() + long(L.offsets[a]) * RR, L.values.begin() + long(L.offsets[a + 1]) * RR, 0.0);
+    for(Index m = L.member_offsets[a]; m < L.member_offsets[a + 1]; ++m) {
+      const std::size_t i = L.members[m];
       const auto Pi = prolongation<F>(L.offset[i]);
-      double* dA = &L.diag[std::size_t(L.parent_of[i]) * RR];
       add_galerkin<F>(diag + i * F * F, Pi, Pi, dA);
       for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
         const Index s = L.slot_of[q];
@@ -324,11 +364,11 @@ private:
   // the same.
   static constexpr std::array<double, 3> rotation_springs{1e-13, 1e-10, 1e-7};
 
-  static void invert_diagonal(Level& L, std::size_t a)
+  static bool invert_diagonal(Level& L, std::size_t a)
   {
     double* m = &L.diag[a * RR];
     if(invert_spd_block<R>(m, &L.inv_diag[a * RR]))
-      return;
+      return true;
     double top = 0;
     std::array<double, R> own{};
     for(int k = 0; k < R; ++k) {
@@ -339,9 +379,9 @@ private:
       for(int k = D; k < R; ++k)
         m[k * R + k] = own[k] + spring * top;
       if(invert_spd_block<R>(m, &L.inv_diag[a * RR]))
-        return;
+        return true;
     }
-    SPRING_MOTION_CHECK(false, "multigrid: a coarse diagonal block is not positive definite");
+    return false;
   }
 
   void factor_coarsest()
@@ -394,50 +434,69 @@ private:
     return s;
   }
 
-  static void gauss_seidel(Level& L, bool forward)
+  // Forward Gauss-Seidel from z = 0: when row i is reached z_j is still 0
+  // for every j > i, so only the entries j < i change the sum (skipping the
+  // others halves the blocks the sweep reads; the sum is the same).
+  static void forward_gauss_seidel_from_zero(Level& L)
   {
-    for(std::size_t kk = 0; kk < L.n; ++kk) {
-      const std::size_t i = forward ? kk : L.n - 1 - kk;
-      L.z[i] = block_product<R>(&L.inv_diag[i * RR], off_residual(L, i));
+    std::fill(L.z.begin(), L.z.end(), Coarse_row{});
+    for(std::size_t i = 0; i < L.n; ++i) {
+      Coarse_row s = L.rhs[i];
+      for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
+        if(L.col[q] < i)
+          subtract_block_product<R>(s, &L.values[std::size_t(q) * RR], L.z[L.col[q]]);
+      L.z[i] = block_product<R>(&L.inv_diag[i * RR], s);
     }
+  }
+
+  static void backward_gauss_seidel(Level& L)
+  {
+    for(std::size_t i = L.n; i-- > 0;)
+      L.z[i] = block_product<R>(&L.inv_diag[i * RR], off_residual(L, i));
   }
 
   // a symmetric V-cycle on level l from z = 0: forward Gauss-Seidel, coarse
   // correction, backward Gauss-Seidel
-  void cycle(std::size_t l)
+  void cycle(std::size_t l, int threads)
   {
     Level& L = levels_[l];
     if(l + 1 == levels_.size()) {
       if(L.n <= parameters.max_direct_rows)
         solve_coarsest(L);
       else { // symmetric, so the cycle stays a symmetric preconditioner
-        std::fill(L.z.begin(), L.z.end(), Coarse_row{});
-        gauss_seidel(L, true);
-        gauss_seidel(L, false);
+        forward_gauss_seidel_from_zero(L);
+        backward_gauss_seidel(L);
       }
       return;
     }
-    std::fill(L.z.begin(), L.z.end(), Coarse_row{});
-    gauss_seidel(L, true);
+    forward_gauss_seidel_from_zero(L);
     Level& C = levels_[l + 1];
-    std::fill(C.rhs.begin(), C.rhs.end(), Coarse_row{});
-    for(std::size_t i = 0; i < L.n; ++i) {
-      Coarse_row s = off_residual(L, i);
-      subtract_block_product<R>(s, &L.diag[i * RR], L.z[i]);
-      add_restricted<R>(s.data(), C.offset[i], C.rhs[C.parent_of[i]]);
+    const long nc = long(C.n), n = long(L.n);
+    const int nt = team(l + 1, threads);
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long b = 0; b < nc; ++b) {
+      Coarse_row rc{};
+      for(Index m = C.member_offsets[std::size_t(b)]; m < C.member_offsets[std::size_t(b) + 1]; ++m) {
+        const std::size_t i = C.members[m];
+        Coarse_row s = off_residual(L, i);
+        subtract_block_product<R>(s, &L.diag[i * RR], L.z[i]);
+        add_restricted<R>(s.data(), C.offset[i], rc);
+      }
+      C.rhs[std::size_t(b)] = rc;
     }
-    cycle(l + 1);
+    cycle(l + 1, threads);
     const double a = parameters.correction;
-    for(std::size_t i = 0; i < L.n; ++i) {
-      const Coarse_row& Z = C.z[C.parent_of[i]];
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long i = 0; i < n; ++i) {
+      const Coarse_row& Z = C.z[C.parent_of[std::size_t(i)]];
       Row u{};
-      add_rotation(Z, C.offset[i], u.data());
+      add_rotation(Z, C.offset[std::size_t(i)], u.data());
       for(int c = 0; c < D; ++c)
-        L.z[i][c] += a * (Z[c] + u[c]);
+        L.z[std::size_t(i)][c] += a * (Z[c] + u[c]);
       for(int k = D; k < R; ++k)
-        L.z[i][k] += a * Z[k];
+        L.z[std::size_t(i)][k] += a * Z[k];
     }
-    gauss_seidel(L, false);
+    backward_gauss_seidel(L);
   }
 
   std::vector<Level> levels_;

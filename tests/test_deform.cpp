@@ -73,6 +73,53 @@ TEST_CASE("deform: a rigid translation of the whole boundary translates every ve
   CHECK(report.min_size_ratio == Approx(1.0).epsilon(1e-10));
 }
 
+TEST_CASE("deform: the warm start extrapolates the increments by the parabola through the last three steps",
+          "[deform][warm_start]")
+{
+  // Every boundary vertex moves by t^3 d, so every vertex's exact increment
+  // over step k is (t_k^3 - t_{k-1}^3) d: per unit of fraction 3 m^2 + h^2 / 4
+  // at the step's midpoint m (steps of fraction h), a parabola in m. From the
+  // fourth step the parabola through the last three increments gives it to
+  // rounding; at the third, the line through two is off by g''/2 (m - m1)
+  // (m - m2) = 6 h^2 per unit of fraction, 6 h^3 |d_c| in the increment.
+  CDT cdt;
+  make_square_with_hole(cdt);
+  const auto net = extract_spring_network(cdt).network;
+  struct Cubic_translation
+  {
+    std::array<double, 2> d;
+    std::array<double, 2> operator()(const std::array<double, 2>& p0, double t) const
+    {
+      return {p0[0] + t * t * t * d[0], p0[1] + t * t * t * d[1]};
+    }
+  };
+  const Cubic_translation motion{{0.3, -0.2}};
+  Deform_options options;
+  options.number_of_steps = 6;
+  options.solver.tolerance = 1e-14; // the solves end at rounding level: the start's error is the extrapolation's
+  const double h = 1.0 / double(options.number_of_steps);
+  Network_deformer<2> deformer(net, assign_roles(net, All_boundary_moving{}));
+  std::vector<double> start_error; // per step: max over rows of |start - exact increment| / max |d_c|
+  deformer.system_observer = [&](const Step_system_view<2>& v) {
+    const double t1 = double(start_error.size() + 1) * h, t0 = t1 - h;
+    const double f = t1 * t1 * t1 - t0 * t0 * t0;
+    double e = 0;
+    for(std::size_t r = 0; r < v.rows; ++r)
+      for(int c = 0; c < 2; ++c)
+        e = std::max(e, std::abs(v.initial[r][c] - f * motion.d[std::size_t(c)]));
+    start_error.push_back(e / 0.3);
+  };
+  const auto report = deformer.run(motion, Grid_scaled_stiffness{}, options);
+  REQUIRE(report.completed);
+  REQUIRE(report.converged);
+  REQUIRE(start_error.size() == 6);
+  INFO("start errors / |d|: " << start_error[2] << " " << start_error[3] << " " << start_error[4] << " "
+                              << start_error[5]);
+  CHECK(start_error[2] == Approx(6 * h * h * h).epsilon(1e-9));
+  for(std::size_t k = 3; k < 6; ++k)
+    CHECK(start_error[k] < 1e-11);
+}
+
 TEST_CASE("deform: one small rotation of an annulus's inner circle matches a direct solve", "[deform]")
 {
   CDT cdt;

@@ -6,6 +6,7 @@
 #include <spring_motion/spring_motion.h>
 #include <spring_motion/internal/solver/assemble.h>
 #include <spring_motion/internal/solver/block_ops.h>
+#include <spring_motion/internal/solver/warm_start.h>
 
 #include "test_meshes.h"
 #include "test_operators.h"
@@ -489,6 +490,41 @@ TEST_CASE("solvers: a warm start from the previous increment gives the same moti
   const double bound = 10 * 2 * double(options.number_of_steps) * options.solver.tolerance;
   CHECK(d1 <= bound);
   CHECK(d2 <= bound);
+}
+
+TEST_CASE("solvers: the warm start's weights extrapolate increments by the polynomial through the last ones",
+          "[solver][warm_start]")
+{
+  // intervals of unequal fraction (as after substeps), newest first: [0.8,
+  // 0.85], [0.6, 0.8], [0.5, 0.6]; the step to start is [0.85, 0.88]
+  const std::array<double, 3> hj{0.05, 0.2, 0.1}, mj{0.825, 0.7, 0.55};
+  const double h = 0.03, m = 0.865;
+  // increments whose rate per unit of fraction is g at each midpoint: the
+  // start must be h g(m) when g is a parabola (three increments) or a line
+  // (two), whatever the intervals
+  const auto start = [&](const internal::Warm_start_weights& w, double (*g)(double)) {
+    double v = 0;
+    for(std::size_t j = 0; j < w.used; ++j)
+      v += w.weight[j] * hj[j] * g(mj[j]);
+    return v;
+  };
+  double (*parabola)(double) = [](double x) { return 0.3 - 1.7 * x + 2.9 * x * x; };
+  double (*line)(double) = [](double x) { return 0.3 - 1.7 * x; };
+  const auto w3 = internal::warm_start_weights(h, m, hj, mj, 3, true);
+  CHECK(w3.used == 3);
+  CHECK(start(w3, parabola) == Approx(h * parabola(m)).epsilon(1e-13));
+  const auto w2 = internal::warm_start_weights(h, m, hj, mj, 2, true);
+  CHECK(w2.used == 2);
+  CHECK(start(w2, line) == Approx(h * line(m)).epsilon(1e-13));
+  // the line does not follow the parabola: the test can tell them apart
+  CHECK(std::abs(start(w2, parabola) - h * parabola(m)) > 1e-4);
+  // one increment, or no extrapolation: the last increment as it is
+  for(const auto& w : {internal::warm_start_weights(h, m, hj, mj, 1, true),
+                       internal::warm_start_weights(h, m, hj, mj, 3, false)}) {
+    CHECK(w.used == 1);
+    CHECK(w.weight[0] == 1.0);
+  }
+  CHECK(internal::warm_start_weights(h, m, hj, mj, 0, true).used == 0);
 }
 
 // One free vertex: conjugate gradients solve it exactly in one iteration, its

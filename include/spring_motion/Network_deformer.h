@@ -16,6 +16,7 @@
 #include <spring_motion/internal/solver/free_system.h>
 #include <spring_motion/internal/solver/thread_chooser.h>
 #include <spring_motion/internal/solver/threads.h>
+#include <spring_motion/internal/solver/warm_start.h>
 #include <spring_motion/motion/Motion_description.h>
 #include <spring_motion/skewness.h>
 #include <spring_motion/validity.h>
@@ -125,8 +126,8 @@ public:
         if(roles_[v] == Vertex_role::moving)
           touches_moving_[t] = 1;
     }
-    increment_.assign(n, Point{});
-    previous_increment_.assign(n, Point{});
+    for(auto& v : increments_)
+      v.assign(n, Point{});
   }
 
   const Spring_network<D>& network() const { return net_; }
@@ -172,8 +173,8 @@ public:
   void reset()
   {
     std::copy(net_.points.begin(), net_.points.end(), positions_.begin());
-    increment_.assign(net_.number_of_vertices(), Point{});
-    previous_increment_.assign(net_.number_of_vertices(), Point{});
+    for(auto& v : increments_)
+      v.assign(net_.number_of_vertices(), Point{});
     history_ = History{};
     t_ = 0;
     moves_ = 0;
@@ -430,9 +431,15 @@ private:
                std::size_t halvings, Step_report& s, Attempt& failed)
   {
     const double t_start = t_;
-    const auto saved_positions = positions_;
-    const auto saved_increment = increment_;
-    const auto saved_previous = previous_increment_;
+    // a single attempt changes the state only when it is accepted; substeps
+    // may be rejected after accepted ones, so the state at the start is
+    // kept to return to (copies of the size of the mesh: only when needed)
+    std::vector<Point> saved_positions;
+    std::array<std::vector<Point>, 3> saved_increments;
+    if(halvings > 0) {
+      saved_positions = positions_;
+      saved_increments = increments_;
+    }
     const History saved_history = history_;
     for(std::size_t level = 0;; ++level) {
       const std::size_t parts = std::size_t(1) << level;
@@ -447,9 +454,10 @@ private:
       }
       if(ok)
         return true;
-      std::copy(saved_positions.begin(), saved_positions.end(), positions_.begin());
-      increment_ = saved_increment;
-      previous_increment_ = saved_previous;
+      if(halvings > 0) {
+        std::copy(saved_positions.begin(), saved_positions.end(), positions_.begin());
+        increments_ = saved_increments;
+      }
       history_ = saved_history;
       t_ = t_start;
       if(level == halvings) {
@@ -482,17 +490,15 @@ private:
     delta_.assign(n, Point{});
     if(options.solver.warm_start) {
       const double h = target - t_, m = 0.5 * (target + t_);
-      if(options.solver.extrapolate && history_.count >= 2 && history_.m1 > history_.m2) {
-        // the increment per unit of motion fraction, extrapolated linearly
-        // from the last two steps to this step's midpoint
-        const double e = (m - history_.m1) / (history_.m1 - history_.m2);
-        const double a = h * (1 + e) / history_.h1, b = h * e / history_.h2;
-        for(Index i : free_)
-          for(int c = 0; c < D; ++c)
-            delta_[i][c] = a * increment_[i][c] - b * previous_increment_[i][c];
-      } else
-        for(Index i : free_)
-          delta_[i] = increment_[i];
+      const auto w = internal::warm_start_weights(h, m, history_.h, history_.m, history_.count,
+                                                  options.solver.extrapolate);
+      for(Index i : free_)
+        for(int c = 0; c < D; ++c) {
+          double v = w.weight[0] * increments_[0][i][c];
+          for(std::size_t j = 1; j < w.used; ++j)
+            v += w.weight[j] * increments_[j][i][c];
+          delta_[i][c] = v;
+        }
     }
     // the motion is evaluated once per moving vertex and attempt
     moving_targets_.resize(moving_.size());
@@ -582,13 +588,13 @@ private:
     // copied, not swapped: positions() keeps its storage for the deformer's
     // lifetime, so a view of it (the Python module's) stays valid
     std::copy(candidate_.begin(), candidate_.end(), positions_.begin());
-    previous_increment_.swap(increment_);
+    // the oldest increment's storage takes the newest
+    increments_[2].swap(increments_[1]);
+    increments_[1].swap(increments_[0]);
     for(Index i : free_)
-      increment_[i] = delta_[i];
-    history_.h2 = history_.h1;
-    history_.m2 = history_.m1;
-    history_.h1 = target - t_;
-    history_.m1 = 0.5 * (target + t_);
+      increments_[0][i] = delta_[i];
+    history_.h = {target - t_, history_.h[0], history_.h[1]};
+    history_.m = {0.5 * (target + t_), history_.m[0], history_.m[1]};
     ++history_.count;
     t_ = target;
     ++s.substeps;
@@ -604,11 +610,13 @@ private:
   bool planes_given_ = false;
   std::vector<Index> sliding_vertices_;
   std::vector<std::array<double, D * D>> sliding_projectors_;
-  std::vector<Point> positions_, increment_, previous_increment_;
-  // the fraction intervals (h) and their midpoints (m) of the last two accepted increments
+  std::vector<Point> positions_;
+  // the last three accepted increments, the newest first (the warm start's history)
+  std::array<std::vector<Point>, 3> increments_;
+  // their fraction intervals (h) and midpoints (m), the newest first
   struct History
   {
-    double h1 = 0, h2 = 0, m1 = 0, m2 = 0;
+    std::array<double, 3> h{}, m{};
     std::size_t count = 0;
   } history_;
   Orientation_record record_;

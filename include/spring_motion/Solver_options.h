@@ -84,9 +84,10 @@ struct Solver_options
   std::size_t max_iterations = 100000;
   /// Start from the previous step's increment instead of zero.
   bool warm_start = true;
-  /// With `warm_start`: start from the linear extrapolation of the last two
-  /// increments (per unit of motion fraction) instead of the last one. The
-  /// fixed point is the same; the start is closer by an order of the step.
+  /// With `warm_start`: start from the extrapolation of the last increments
+  /// (per unit of motion fraction) instead of the last one: the parabola
+  /// through the last three, the line through two at the second step. The
+  /// fixed point is the same; the start is closer by two orders of the step.
   bool extrapolate = true;
   /// Gauss-Seidel order.
   Vertex_ordering ordering = Vertex_ordering::block_multicolour;

@@ -107,7 +107,7 @@ TEST_CASE("deform: the warm start extrapolates the increments by the parabola th
     for(std::size_t r = 0; r < v.rows; ++r)
       for(int c = 0; c < 2; ++c)
         e = std::max(e, std::abs(v.initial[r][c] - f * motion.d[std::size_t(c)]));
-    start_error.push_back(e / 0.3);
+    start_error.push_back(e / std::max(std::abs(motion.d[0]), std::abs(motion.d[1])));
   };
   const auto report = deformer.run(motion, Grid_scaled_stiffness{}, options);
   REQUIRE(report.completed);

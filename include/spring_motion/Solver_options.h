@@ -86,7 +86,7 @@ struct Solver_options
   bool warm_start = true;
   /// With `warm_start`: start from the extrapolation of the last increments
   /// (per unit of motion fraction) instead of the last one: the parabola
-  /// through the last three, the line through two at the second step. The
+  /// through the last three, the line through two at the third step. The
   /// fixed point is the same; the start is closer by two orders of the step.
   bool extrapolate = true;
   /// Gauss-Seidel order.

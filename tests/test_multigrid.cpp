@@ -333,6 +333,74 @@ TEST_CASE("rigid-body multigrid: level 0 is the Galerkin product P^T A P with ri
   CHECK(worst < 1e-12);
 }
 
+namespace {
+
+// C = P_i^T A P_j summed densely: P = [I | S(d)], column k of S(d) the
+// displacement at offset d of unit rotation k, written out here: in 3D e_k x d
+template <int D>
+std::vector<double> dense_rigid_galerkin(const std::vector<double>& A, const std::array<double, D>& di,
+                                         const std::array<double, D>& dj)
+{
+  constexpr int RD = D * (D + 1) / 2;
+  auto P = [](const std::array<double, D>& d) {
+    std::vector<double> p(std::size_t(D * RD), 0.0);
+    for(int c = 0; c < D; ++c)
+      p[std::size_t(c * RD + c)] = 1;
+    if constexpr(D == 2) {
+      p[2] = -d[1];
+      p[5] = d[0];
+    } else {
+      const double x = d[0], y = d[1], z = d[2];
+      const double S[3][3] = {{0, z, -y}, {-z, 0, x}, {y, -x, 0}}; // S[r][k] = (e_k x d)_r
+      for(int r = 0; r < 3; ++r)
+        for(int k = 0; k < 3; ++k)
+          p[std::size_t(r * RD + 3 + k)] = S[r][k];
+    }
+    return p;
+  };
+  const auto Pi = P(di), Pj = P(dj);
+  std::vector<double> C(std::size_t(RD * RD), 0.0);
+  for(int r = 0; r < RD; ++r)
+    for(int c = 0; c < RD; ++c)
+      for(int k = 0; k < D; ++k)
+        for(int m = 0; m < D; ++m)
+          C[std::size_t(r * RD + c)] += Pi[std::size_t(k * RD + r)] * A[std::size_t(k * D + m)] *
+                                        Pj[std::size_t(m * RD + c)];
+  return C;
+}
+
+template <int D>
+void check_fine_galerkin()
+{
+  using M = Rigid_body_multigrid<D>;
+  std::mt19937 gen(17 + D);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for(int trial = 0; trial < 20; ++trial) {
+    std::vector<double> A(std::size_t(D * D));
+    for(double& a : A)
+      a = u(gen);
+    std::array<double, D> di, dj;
+    for(int c = 0; c < D; ++c) {
+      di[std::size_t(c)] = 3 * u(gen);
+      dj[std::size_t(c)] = 3 * u(gen);
+    }
+    const auto expected = dense_rigid_galerkin<D>(A, di, dj);
+    std::vector<double> C(expected.size(), 0.5); // added to, not overwritten
+    M::add_fine_galerkin(A.data(), di, dj, C.data());
+    for(std::size_t k = 0; k < C.size(); ++k)
+      CHECK(std::abs((C[k] - 0.5) - expected[k]) <= 1e-13 * (1 + std::abs(expected[k])));
+  }
+}
+
+} // namespace
+
+TEST_CASE("rigid-body multigrid: the blockwise Galerkin product of a fine block equals the dense P_i^T A P_j",
+          "[solver][multigrid]")
+{
+  SECTION("2D") { check_fine_galerkin<2>(); }
+  SECTION("3D") { check_fine_galerkin<3>(); }
+}
+
 TEST_CASE("rigid-body multigrid: with the coarsest level solved exactly, the coarse correction reproduces every "
           "rigid motion",
           "[solver][multigrid]")

@@ -174,6 +174,52 @@ public:
   /// The centre of unknown a of level l (the mean of its members' positions).
   const Row& centre(std::size_t level, Index a) const { return levels_[level].centre[a]; }
 
+  /// C += P_i^T A P_j for a fine D x D block A (row-major) and the
+  /// prolongation blocks P = [I | S(d)] of fine vertices at offsets d_i, d_j
+  /// from their aggregates' centres; C is R x R, row-major.
+  ///
+  /// Written out by blocks, [[A, A S_j], [S_i^T A, S_i^T A S_j]], where the
+  /// dense product (D x R times R columns twice) cost three times the
+  /// multiplications: S(d)^T v is d x v in 3D (-d_y v_x + d_x v_y in 2D),
+  /// two products per entry. Each entry is the same sum of the same nonzero
+  /// products as in the dense form, whose other terms are exact zeros and
+  /// ones.
+  static void add_fine_galerkin(const double* A, const Row& di, const Row& dj, double* C)
+  {
+    constexpr int W = R - D; // rotations
+    std::array<double, D * W> AS; // A S_j, row-major
+    for(int r = 0; r < D; ++r) {
+      Row a;
+      for(int c = 0; c < D; ++c)
+        a[c] = A[r * D + c];
+      const auto t = rotation_transpose_times(dj, a); // row r of A S_j = S_j^T (row r of A)
+      for(int k = 0; k < W; ++k)
+        AS[r * W + k] = t[k];
+    }
+    for(int r = 0; r < D; ++r)
+      for(int c = 0; c < D; ++c)
+        C[r * R + c] += A[r * D + c];
+    for(int r = 0; r < D; ++r)
+      for(int k = 0; k < W; ++k)
+        C[r * R + D + k] += AS[r * W + k];
+    for(int c = 0; c < D; ++c) {
+      Row a;
+      for(int r = 0; r < D; ++r)
+        a[r] = A[r * D + c];
+      const auto t = rotation_transpose_times(di, a); // column c of S_i^T A
+      for(int k = 0; k < W; ++k)
+        C[(D + k) * R + c] += t[k];
+    }
+    for(int m = 0; m < W; ++m) {
+      Row a;
+      for(int r = 0; r < D; ++r)
+        a[r] = AS[r * W + m];
+      const auto t = rotation_transpose_times(di, a); // column m of S_i^T A S_j
+      for(int k = 0; k < W; ++k)
+        C[(D + k) * R + D + m] += t[k];
+    }
+  }
+
 private:
   static constexpr Index none = std::numeric_limits<Index>::max();
 
@@ -223,6 +269,17 @@ private:
         return {d[2], 0.0, -d[0]};
       return {-d[1], d[0], 0.0};
     }
+  }
+
+  // S(d)^T v, the rotations' part of P^T v: entry k is (e_k x d) . v, which
+  // is (d x v)_k in 3D; in 2D (-d_y, d_x) . v. Summed in the order of
+  // add_restricted's loop over the nonzero entries of each column.
+  static std::array<double, R - D> rotation_transpose_times(const Row& d, const Row& v)
+  {
+    if constexpr(D == 2)
+      return {-d[1] * v[0] + d[0] * v[1]};
+    else
+      return {-d[2] * v[1] + d[1] * v[2], d[2] * v[0] - d[0] * v[2], -d[1] * v[0] + d[0] * v[1]};
   }
 
   // u += S(d) w, w the rotations of z
@@ -338,6 +395,19 @@ private:
     double* dA = &L.diag[a * RR];
     std::fill(dA, dA + RR, 0.0);
     std::fill(L.values.begin() + long(L.offsets[a]) * RR, L.values.begin() + long(L.offsets[a + 1]) * RR, 0.0);
+    if constexpr(F == D) {
+      for(Index m = L.member_offsets[a]; m < L.member_offsets[a + 1]; ++m) {
+        const std::size_t i = L.members[m];
+        const Row& di = L.offset[i];
+        add_fine_galerkin(diag + i * DD, di, di, dA);
+        for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
+          const Index s = L.slot_of[q];
+          add_fine_galerkin(values + std::size_t(q) * DD, di, L.offset[col[q]],
+                            s == none ? dA : &L.values[std::size_t(s) * RR]);
+        }
+      }
+      return;
+    }
     for(Index m = L.member_offsets[a]; m < L.member_offsets[a + 1]; ++m) {
       const std::size_t i = L.members[m];
       const auto Pi = prolongation<F>(L.offset[i]);

@@ -335,15 +335,17 @@ TEST_CASE("rigid-body multigrid: level 0 is the Galerkin product P^T A P with ri
 
 namespace {
 
-// C = P_i^T A P_j summed densely: P = [I | S(d)], column k of S(d) the
-// displacement at offset d of unit rotation k, written out here: in 3D e_k x d
-template <int D>
+// C = P_i^T A P_j summed densely for an F x F block A: P = [I | S(d)] (F =
+// D, a fine vertex) or [[I, S(d)], [0, I]] (F = R, a coarse node whose
+// rotations carry over), column k of S(d) the displacement at offset d of
+// unit rotation k, written out here: in 3D e_k x d
+template <int D, int F>
 std::vector<double> dense_rigid_galerkin(const std::vector<double>& A, const std::array<double, D>& di,
                                          const std::array<double, D>& dj)
 {
   constexpr int RD = D * (D + 1) / 2;
   auto P = [](const std::array<double, D>& d) {
-    std::vector<double> p(std::size_t(D * RD), 0.0);
+    std::vector<double> p(std::size_t(F * RD), 0.0);
     for(int c = 0; c < D; ++c)
       p[std::size_t(c * RD + c)] = 1;
     if constexpr(D == 2) {
@@ -356,27 +358,30 @@ std::vector<double> dense_rigid_galerkin(const std::vector<double>& A, const std
         for(int k = 0; k < 3; ++k)
           p[std::size_t(r * RD + 3 + k)] = S[r][k];
     }
+    if constexpr(F == RD)
+      for(int k = D; k < RD; ++k)
+        p[std::size_t(k * RD + k)] = 1;
     return p;
   };
   const auto Pi = P(di), Pj = P(dj);
   std::vector<double> C(std::size_t(RD * RD), 0.0);
   for(int r = 0; r < RD; ++r)
     for(int c = 0; c < RD; ++c)
-      for(int k = 0; k < D; ++k)
-        for(int m = 0; m < D; ++m)
-          C[std::size_t(r * RD + c)] += Pi[std::size_t(k * RD + r)] * A[std::size_t(k * D + m)] *
+      for(int k = 0; k < F; ++k)
+        for(int m = 0; m < F; ++m)
+          C[std::size_t(r * RD + c)] += Pi[std::size_t(k * RD + r)] * A[std::size_t(k * F + m)] *
                                         Pj[std::size_t(m * RD + c)];
   return C;
 }
 
-template <int D>
-void check_fine_galerkin()
+template <int D, int F>
+void check_galerkin_by_blocks()
 {
   using M = Rigid_body_multigrid<D>;
-  std::mt19937 gen(17 + D);
+  std::mt19937 gen(17 + 10 * D + F);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for(int trial = 0; trial < 20; ++trial) {
-    std::vector<double> A(std::size_t(D * D));
+    std::vector<double> A(std::size_t(F * F));
     for(double& a : A)
       a = u(gen);
     std::array<double, D> di, dj;
@@ -384,9 +389,9 @@ void check_fine_galerkin()
       di[std::size_t(c)] = 3 * u(gen);
       dj[std::size_t(c)] = 3 * u(gen);
     }
-    const auto expected = dense_rigid_galerkin<D>(A, di, dj);
+    const auto expected = dense_rigid_galerkin<D, F>(A, di, dj);
     std::vector<double> C(expected.size(), 0.5); // added to, not overwritten
-    M::add_fine_galerkin(A.data(), di, dj, C.data());
+    M::template add_galerkin_by_blocks<F>(A.data(), di, dj, C.data());
     for(std::size_t k = 0; k < C.size(); ++k)
       CHECK(std::abs((C[k] - 0.5) - expected[k]) <= 1e-13 * (1 + std::abs(expected[k])));
   }
@@ -394,11 +399,13 @@ void check_fine_galerkin()
 
 } // namespace
 
-TEST_CASE("rigid-body multigrid: the blockwise Galerkin product of a fine block equals the dense P_i^T A P_j",
+TEST_CASE("rigid-body multigrid: the blockwise Galerkin product of a block equals the dense P_i^T A P_j",
           "[solver][multigrid]")
 {
-  SECTION("2D") { check_fine_galerkin<2>(); }
-  SECTION("3D") { check_fine_galerkin<3>(); }
+  SECTION("2D, fine block") { check_galerkin_by_blocks<2, 2>(); }
+  SECTION("2D, coarse block") { check_galerkin_by_blocks<2, 3>(); }
+  SECTION("3D, fine block") { check_galerkin_by_blocks<3, 3>(); }
+  SECTION("3D, coarse block") { check_galerkin_by_blocks<3, 6>(); }
 }
 
 TEST_CASE("rigid-body multigrid: with the coarsest level solved exactly, the coarse correction reproduces every "

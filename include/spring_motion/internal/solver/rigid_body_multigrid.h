@@ -174,49 +174,46 @@ public:
   /// The centre of unknown a of level l (the mean of its members' positions).
   const Row& centre(std::size_t level, Index a) const { return levels_[level].centre[a]; }
 
-  /// C += P_i^T A P_j for a fine D x D block A (row-major) and the
-  /// prolongation blocks P = [I | S(d)] of fine vertices at offsets d_i, d_j
-  /// from their aggregates' centres; C is R x R, row-major.
+  /// C += P_i^T A P_j for an F x F block A of the finer level (row-major):
+  /// F = D, a fine block, P = [I | S(d)]; F = R, a block of the coarse level
+  /// above, P = [[I, S(d)], [0, I]] (the finer node's rotations carry over);
+  /// d_i, d_j the two finer unknowns' offsets from their aggregates' centres.
+  /// C is R x R, row-major.
   ///
-  /// Written out by blocks, [[A, A S_j], [S_i^T A, S_i^T A S_j]], where the
-  /// dense product (D x R times R columns twice) cost three times the
-  /// multiplications: S(d)^T v is d x v in 3D (-d_y v_x + d_x v_y in 2D),
-  /// two products per entry. Each entry is the same sum of the same nonzero
-  /// products as in the dense form, whose other terms are exact zeros and
-  /// ones.
-  static void add_fine_galerkin(const double* A, const Row& di, const Row& dj, double* C)
+  /// Written by blocks: the rows of T = A P_j are [A_t | A_t S_j (+ A_r)]
+  /// (A_t the translational columns of a row, A_r its rotational ones), and
+  /// C gains T's translational rows, then S_i^T (T's translational rows) (+
+  /// T's rotational rows). S(d)^T v is d x v in 3D (-d_y v_x + d_x v_y in
+  /// 2D), two products per entry, where the dense products (F x F times F x
+  /// R, then R x F times F x R) multiply by P's zeros and ones: a third of
+  /// the multiplications for F = D, a sixth for F = R in 3D. Each entry is
+  /// the same sum of the same nonzero products in the same order as in the
+  /// dense form, whose other terms are exact zeros and ones.
+  template <int F>
+  static void add_galerkin_by_blocks(const double* A, const Row& di, const Row& dj, double* C)
   {
+    static_assert(F == D || F == R, "a block of the fine level or of a coarse one");
     constexpr int W = R - D; // rotations
-    std::array<double, D * W> AS; // A S_j, row-major
-    for(int r = 0; r < D; ++r) {
+    std::array<double, F * R> T;
+    for(int r = 0; r < F; ++r) {
       Row a;
-      for(int c = 0; c < D; ++c)
-        a[c] = A[r * D + c];
-      const auto t = rotation_transpose_times(dj, a); // row r of A S_j = S_j^T (row r of A)
-      for(int k = 0; k < W; ++k)
-        AS[r * W + k] = t[k];
+      for(int c = 0; c < D; ++c) {
+        a[c] = A[r * F + c];
+        T[r * R + c] = a[c];
+      }
+      const auto t = rotation_transpose_times(dj, a);
+      for(int m = 0; m < W; ++m)
+        T[r * R + D + m] = F == R ? t[m] + A[r * F + D + m] : t[m];
     }
-    for(int r = 0; r < D; ++r)
-      for(int c = 0; c < D; ++c)
-        C[r * R + c] += A[r * D + c];
-    for(int r = 0; r < D; ++r)
+    for(int c = 0; c < R; ++c) {
+      Row v;
+      for(int r = 0; r < D; ++r) {
+        v[r] = T[r * R + c];
+        C[r * R + c] += v[r];
+      }
+      const auto t = rotation_transpose_times(di, v);
       for(int k = 0; k < W; ++k)
-        C[r * R + D + k] += AS[r * W + k];
-    for(int c = 0; c < D; ++c) {
-      Row a;
-      for(int r = 0; r < D; ++r)
-        a[r] = A[r * D + c];
-      const auto t = rotation_transpose_times(di, a); // column c of S_i^T A
-      for(int k = 0; k < W; ++k)
-        C[(D + k) * R + c] += t[k];
-    }
-    for(int m = 0; m < W; ++m) {
-      Row a;
-      for(int r = 0; r < D; ++r)
-        a[r] = AS[r * W + m];
-      const auto t = rotation_transpose_times(di, a); // column m of S_i^T A S_j
-      for(int k = 0; k < W; ++k)
-        C[(D + k) * R + D + m] += t[k];
+        C[(D + k) * R + c] += F == R ? t[k] + T[(D + k) * R + c] : t[k];
     }
   }
 
@@ -307,46 +304,6 @@ private:
     }
   }
 
-  // the F x R prolongation block of a finer unknown at offset d (F = D: a
-  // fine vertex; F = R: a coarse node, whose rotations carry over)
-  template <int F>
-  static std::array<double, F * R> prolongation(const Row& d)
-  {
-    std::array<double, F * R> p{};
-    for(int c = 0; c < D; ++c)
-      p[c * R + c] = 1;
-    for(int k = 0; k < R - D; ++k) {
-      const Row col = rotation_column(k, d);
-      for(int c = 0; c < D; ++c)
-        p[c * R + D + k] = col[c];
-      if constexpr(F == R)
-        p[(D + k) * R + D + k] = 1;
-    }
-    return p;
-  }
-
-  // C += Pi^T A Pj for an F x F block A
-  template <int F>
-  static void add_galerkin(const double* A, const std::array<double, F * R>& Pi, const std::array<double, F * R>& Pj,
-                           double* C)
-  {
-    double T[F * R];
-    for(int r = 0; r < F; ++r)
-      for(int c = 0; c < R; ++c) {
-        double s = 0;
-        for(int k = 0; k < F; ++k)
-          s += A[r * F + k] * Pj[k * R + c];
-        T[r * R + c] = s;
-      }
-    for(int r = 0; r < R; ++r)
-      for(int c = 0; c < R; ++c) {
-        double s = 0;
-        for(int k = 0; k < F; ++k)
-          s += Pi[k * R + r] * T[k * R + c];
-        C[r * R + c] += s;
-      }
-  }
-
   // level l's centres, offsets and values from the level above (the fine
   // matrix for l = 0)
   void load_level(std::size_t l, const Csr_view& fine, const Row* points, int threads)
@@ -395,27 +352,14 @@ private:
     double* dA = &L.diag[a * RR];
     std::fill(dA, dA + RR, 0.0);
     std::fill(L.values.begin() + long(L.offsets[a]) * RR, L.values.begin() + long(L.offsets[a + 1]) * RR, 0.0);
-    if constexpr(F == D) {
-      for(Index m = L.member_offsets[a]; m < L.member_offsets[a + 1]; ++m) {
-        const std::size_t i = L.members[m];
-        const Row& di = L.offset[i];
-        add_fine_galerkin(diag + i * DD, di, di, dA);
-        for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
-          const Index s = L.slot_of[q];
-          add_fine_galerkin(values + std::size_t(q) * DD, di, L.offset[col[q]],
-                            s == none ? dA : &L.values[std::size_t(s) * RR]);
-        }
-      }
-      return;
-    }
     for(Index m = L.member_offsets[a]; m < L.member_offsets[a + 1]; ++m) {
       const std::size_t i = L.members[m];
-      const auto Pi = prolongation<F>(L.offset[i]);
-      add_galerkin<F>(diag + i * F * F, Pi, Pi, dA);
+      const Row& di = L.offset[i];
+      add_galerkin_by_blocks<F>(diag + i * F * F, di, di, dA);
       for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
         const Index s = L.slot_of[q];
-        add_galerkin<F>(values + std::size_t(q) * F * F, Pi, prolongation<F>(L.offset[col[q]]),
-                        s == none ? dA : &L.values[std::size_t(s) * RR]);
+        add_galerkin_by_blocks<F>(values + std::size_t(q) * F * F, di, L.offset[col[q]],
+                                  s == none ? dA : &L.values[std::size_t(s) * RR]);
       }
     }
   }

@@ -269,8 +269,9 @@ private:
   }
 
   // S(d)^T v, the rotations' part of P^T v: entry k is (e_k x d) . v, which
-  // is (d x v)_k in 3D; in 2D (-d_y, d_x) . v. Summed in the order of
-  // add_restricted's loop over the nonzero entries of each column.
+  // is (d x v)_k in 3D; in 2D (-d_y, d_x) . v. Each entry sums the nonzero
+  // entries of column k of S(d) (rotation_column) in increasing row order,
+  // as a dense product over that column does.
   static std::array<double, R - D> rotation_transpose_times(const Row& d, const Row& v)
   {
     if constexpr(D == 2)

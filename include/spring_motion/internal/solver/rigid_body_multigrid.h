@@ -294,15 +294,14 @@ private:
   template <int F>
   static void add_restricted(const double* s, const Row& d, Coarse_row& rc)
   {
-    for(int c = 0; c < D; ++c)
+    Row v;
+    for(int c = 0; c < D; ++c) {
       rc[c] += s[c];
-    for(int k = 0; k < R - D; ++k) {
-      const Row col = rotation_column(k, d);
-      double t = 0;
-      for(int c = 0; c < D; ++c)
-        t += col[c] * s[c];
-      rc[D + k] += t + (F == R ? s[D + k] : 0.0);
+      v[c] = s[c];
     }
+    const auto t = rotation_transpose_times(d, v);
+    for(int k = 0; k < R - D; ++k)
+      rc[D + k] += t[k] + (F == R ? s[D + k] : 0.0);
   }
 
   // level l's centres, offsets and values from the level above (the fine

@@ -367,10 +367,16 @@ inline std::array<double, 3> triangle_inverse_sin_squared(const std::array<doubl
 /// as triangle_inverse_sin_squared().
 inline std::array<double, 6> dihedral_inverse_sin_squared(const std::array<std::array<double, 3>, 4>& p)
 {
-  std::array<double, 3> a = sub<3>(p[1], p[0]), b = sub<3>(p[2], p[0]), c = sub<3>(p[3], p[0]);
-  double extent = 0;
-  for(int i = 0; i < 3; ++i)
-    extent = std::max({extent, std::abs(a[i]), std::abs(b[i]), std::abs(c[i])});
+  // Written in scalars, not through sub/cross/dot on std::array: the
+  // compiler kept the arrays on the stack, stored each cross product's
+  // components one by one and read two of them back as one vector, a load
+  // that store forwarding cannot serve; that stall took a quarter of the
+  // function. The same operations in the same order, so the same values.
+  double ax = p[1][0] - p[0][0], ay = p[1][1] - p[0][1], az = p[1][2] - p[0][2];
+  double bx = p[2][0] - p[0][0], by = p[2][1] - p[0][1], bz = p[2][2] - p[0][2];
+  double cx = p[3][0] - p[0][0], cy = p[3][1] - p[0][1], cz = p[3][2] - p[0][2];
+  const double extent = std::max({std::abs(ax), std::abs(ay), std::abs(az), std::abs(bx), std::abs(by), std::abs(bz),
+                                  std::abs(cx), std::abs(cy), std::abs(cz)});
   constexpr double cap = 1e200;
   std::array<double, 6> out;
   if(extent == 0) {
@@ -378,19 +384,19 @@ inline std::array<double, 6> dihedral_inverse_sin_squared(const std::array<std::
     return out;
   }
   const double inv = 1.0 / extent;
-  for(int i = 0; i < 3; ++i) {
-    a[i] *= inv;
-    b[i] *= inv;
-    c[i] *= inv;
-  }
-  const auto ab = cross(a, b), ac = cross(a, c), bc = cross(b, c);
-  const double det = dot<3>(a, bc);
-  // the face opposite vertex f: (1,2,3) is (b - a) x (c - a) = bc - ac + ab
-  std::array<double, 3> n0;
-  for(int i = 0; i < 3; ++i)
-    n0[i] = bc[i] - ac[i] + ab[i];
+  ax *= inv, ay *= inv, az *= inv;
+  bx *= inv, by *= inv, bz *= inv;
+  cx *= inv, cy *= inv, cz *= inv;
+  // ab = a x b, ac = a x c, bc = b x c
+  const double abx = ay * bz - az * by, aby = az * bx - ax * bz, abz = ax * by - ay * bx;
+  const double acx = ay * cz - az * cy, acy = az * cx - ax * cz, acz = ax * cy - ay * cx;
+  const double bcx = by * cz - bz * cy, bcy = bz * cx - bx * cz, bcz = bx * cy - by * cx;
+  const double det = ax * bcx + ay * bcy + az * bcz;
+  // the face opposite vertex 0: (b - a) x (c - a) = bc - ac + ab
+  const double n0x = bcx - acx + abx, n0y = bcy - acy + aby, n0z = bcz - acz + abz;
   // |n_f|^2 of the face opposite vertex f
-  const double f0 = dot<3>(n0, n0), f1 = dot<3>(bc, bc), f2 = dot<3>(ac, ac), f3 = dot<3>(ab, ab);
+  const double f0 = n0x * n0x + n0y * n0y + n0z * n0z, f1 = bcx * bcx + bcy * bcy + bcz * bcz,
+               f2 = acx * acx + acy * acy + acz * acz, f3 = abx * abx + aby * aby + abz * abz;
   const double det2 = det * det;
   // Per edge k (Simplex_tables<3>::edge), written out rather than looked up
   // in the tables: read through a table from a small array on the stack, the
@@ -398,8 +404,12 @@ inline std::array<double, 6> dihedral_inverse_sin_squared(const std::array<std::
   // forwarding) and cost a fifth of the function. The two faces at edge k
   // are those opposite its two other vertices (Simplex_tables<3>::other).
   const std::array<double, 6> den{f2 * f3, f1 * f3, f1 * f2, f0 * f3, f0 * f2, f0 * f1};
-  const auto ba = sub<3>(b, a), ca = sub<3>(c, a), cb = sub<3>(c, b);
-  const std::array<double, 6> l2{dot<3>(a, a), dot<3>(b, b), dot<3>(c, c), dot<3>(ba, ba), dot<3>(ca, ca), dot<3>(cb, cb)};
+  const double bax = bx - ax, bay = by - ay, baz = bz - az;
+  const double cax = cx - ax, cay = cy - ay, caz = cz - az;
+  const double cbx = cx - bx, cby = cy - by, cbz = cz - bz;
+  const std::array<double, 6> l2{ax * ax + ay * ay + az * az,       bx * bx + by * by + bz * bz,
+                                 cx * cx + cy * cy + cz * cz,       bax * bax + bay * bay + baz * baz,
+                                 cax * cax + cay * cay + caz * caz, cbx * cbx + cby * cby + cbz * cbz};
   for(std::size_t k = 0; k < 6; ++k) {
     const double num = det2 * l2[k];
     out[k] = (den[k] > 0 && num > 1e-200 * den[k]) ? den[k] / num : cap;

@@ -4,6 +4,7 @@
 
 #include <spring_motion/Error.h>
 #include <spring_motion/Spring_network.h>
+#include <spring_motion/internal/solver/threads.h>
 
 #include <algorithm>
 #include <array>
@@ -46,6 +47,9 @@ struct Aggregates
   std::vector<Index> parent_of; // finer unknown -> aggregate
   std::vector<Index> slot_of;   // finer off-diagonal entry -> coarse entry, or none (inside an aggregate)
   std::vector<Index> offsets, col;
+  // aggregate a's finer unknowns, increasing: members[member_offsets[a] ..
+  // member_offsets[a + 1] - 1]
+  std::vector<Index> member_offsets, members;
 };
 
 /// Greedy aggregation (Vanek, Mandel and Brezina) of the n unknowns of a
@@ -110,18 +114,24 @@ inline bool aggregate_strong_neighbours(std::size_t n, const Index* offsets, con
     return false;
   g.count = count;
   g.parent_of = std::move(agg);
-  // coarse pattern: the aggregate pairs joined by a fine entry
-  std::vector<std::vector<Index>> members(count);
+  g.member_offsets.assign(std::size_t(count) + 1, 0);
+  for(const Index a : g.parent_of)
+    ++g.member_offsets[std::size_t(a) + 1];
+  for(Index a = 0; a < count; ++a)
+    g.member_offsets[a + 1] += g.member_offsets[a];
+  g.members.resize(n);
+  std::vector<Index> next(g.member_offsets.begin(), g.member_offsets.end() - 1);
   for(std::size_t i = 0; i < n; ++i)
-    members[g.parent_of[i]].push_back(Index(i));
+    g.members[next[g.parent_of[i]]++] = Index(i);
+  // coarse pattern: the aggregate pairs joined by a fine entry
   g.offsets.assign(std::size_t(count) + 1, 0);
   g.col.clear();
   g.slot_of.assign(offsets[n], none);
   std::vector<Index> slot(count, none);
   for(Index A = 0; A < count; ++A) {
     const Index begin = Index(g.col.size());
-    for(Index i : members[A])
-      for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
+    for(Index m = g.member_offsets[A]; m < g.member_offsets[A + 1]; ++m)
+      for(Index q = offsets[g.members[m]]; q < offsets[g.members[m] + 1]; ++q) {
         const Index B = g.parent_of[col[q]];
         if(B == A)
           continue;
@@ -273,7 +283,7 @@ public:
   std::size_t rows(std::size_t level) const { return levels_[level].n; }
 
   /// Chooses the aggregates of every level from the fine matrix.
-  void build(const Csr_view& fine)
+  void build(const Csr_view& fine, int threads = 1)
   {
     SPRING_MOTION_CHECK(!fine.block, "aggregation multigrid: a block system takes Rigid_body_multigrid");
     levels_.clear();
@@ -286,18 +296,18 @@ public:
       levels_.push_back(std::move(L));
       Level& c = levels_.back();
       // the coarse values of the first system, to aggregate the next level
-      sum_values(v, c);
+      sum_values(v, c, threads);
       v = c.view();
     }
   }
 
   /// Recomputes every coarse level's values from the fine matrix (same
   /// pattern as in `build`) and factors the coarsest.
-  void load(const Csr_view& fine)
+  void load(const Csr_view& fine, int threads = 1)
   {
     Csr_view v = fine;
     for(Level& c : levels_) {
-      sum_values(v, c);
+      sum_values(v, c, threads);
       v = c.view();
     }
     factor_coarsest(v);
@@ -333,6 +343,7 @@ private:
     std::vector<Index> parent_of;       // finer unknown -> aggregate (this level's unknown)
     std::vector<Index> slot_of;         // finer off-diagonal entry -> entry here, or none (inside an aggregate)
     std::vector<Index> offsets, col;    // this level's pattern
+    std::vector<Index> member_offsets, members; // aggregate -> its finer unknowns (Aggregates)
     std::vector<double> values, diag, inv_diag; // per entry / row
     std::vector<Row> rhs, z;
     Csr_view view() const { return {n, offsets.data(), col.data(), values.data(), diag.data(), false}; }
@@ -356,6 +367,8 @@ private:
     L.slot_of = std::move(g.slot_of);
     L.offsets = std::move(g.offsets);
     L.col = std::move(g.col);
+    L.member_offsets = std::move(g.member_offsets);
+    L.members = std::move(g.members);
     L.values.resize(L.col.size());
     L.diag.resize(L.n);
     L.inv_diag.resize(L.n);
@@ -366,27 +379,42 @@ private:
 
   // L's values from the finer level a: entries summed over aggregate pairs;
   // an aggregate's diagonal is the sum of its members' diagonals and of the
-  // entries between its members (both directions)
-  static void sum_values(const Csr_view& a, Level& L)
+  // entries between its members (both directions).
+  //
+  // Aggregate by aggregate, each from its members' rows in increasing
+  // order: an aggregate's row of L gets exactly the finer rows of its
+  // members, so the aggregates are independent (a parallel loop, the same
+  // bits for any thread count), and each sum takes its terms in the order of
+  // a pass over the finer rows. (That pass, serial, scattering into all of
+  // L, was a fifth of the wing's solve.)
+  static void sum_values(const Csr_view& a, Level& L, int threads)
   {
-    std::fill(L.values.begin(), L.values.end(), 0.0);
-    std::fill(L.diag.begin(), L.diag.end(), 0.0);
-    for(std::size_t i = 0; i < a.rows; ++i) {
-      const Index A = L.parent_of[i];
-      double d = a.diag[i];
-      for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q) {
-        const Index s = L.slot_of[q];
-        if(s == none)
-          d += a.values[q];
-        else
-          L.values[s] += a.values[q];
+    const long na = long(L.n);
+    bool positive = true;
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads, a.rows)) reduction(&& : positive)
+    for(long A = 0; A < na; ++A) {
+      const std::size_t b = std::size_t(A);
+      std::fill(L.values.begin() + long(L.offsets[b]), L.values.begin() + long(L.offsets[b + 1]), 0.0);
+      double dA = 0;
+      for(Index m = L.member_offsets[b]; m < L.member_offsets[b + 1]; ++m) {
+        const Index i = L.members[m];
+        double d = a.diag[i];
+        for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q) {
+          const Index s = L.slot_of[q];
+          if(s == none)
+            d += a.values[q];
+          else
+            L.values[s] += a.values[q];
+        }
+        dA += d;
       }
-      L.diag[A] += d;
+      L.diag[b] = dA;
+      positive = positive && dA > 0;
+      L.inv_diag[b] = dA > 0 ? 1.0 / dA : 0.0; // no division by zero (a trap under feenableexcept)
     }
-    for(std::size_t A = 0; A < L.n; ++A) {
-      SPRING_MOTION_CHECK(L.diag[A] > 0, "multigrid: a coarse diagonal is not positive (" << L.diag[A] << ")");
-      L.inv_diag[A] = 1.0 / L.diag[A];
-    }
+    if(!positive)
+      for(std::size_t A = 0; A < L.n; ++A)
+        SPRING_MOTION_CHECK(L.diag[A] > 0, "multigrid: a coarse diagonal is not positive (" << L.diag[A] << ")");
   }
 
   // dense Cholesky of the coarsest level's n x n matrix, shared by the D

@@ -918,8 +918,8 @@ private:
         rigid_.load(fine, row_points_.data(), options.threads);
       } else {
         if(!multigrid_.built())
-          multigrid_.build(fine);
-        multigrid_.load(fine);
+          multigrid_.build(fine, options.threads);
+        multigrid_.load(fine, options.threads);
       }
     }
     Preconditioner_state pc;

@@ -12,7 +12,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <vector>
 
 namespace spring_motion {
@@ -111,14 +110,8 @@ public:
       L.z.resize(L.n);
       L.centre.resize(L.n);
       L.offset.resize(n);
-      L.member_offsets.assign(L.n + 1, 0);
-      for(const Index a : L.parent_of)
-        ++L.member_offsets[std::size_t(a) + 1];
-      std::partial_sum(L.member_offsets.begin(), L.member_offsets.end(), L.member_offsets.begin());
-      L.members.resize(n);
-      std::vector<Index> next(L.member_offsets.begin(), L.member_offsets.end() - 1);
-      for(std::size_t i = 0; i < n; ++i)
-        L.members[next[L.parent_of[i]]++] = Index(i);
+      L.member_offsets = std::move(g.member_offsets);
+      L.members = std::move(g.members);
       levels_.push_back(std::move(L));
       // this level's values, to aggregate the next one
       load_level(levels_.size() - 1, fine, points, threads);

@@ -385,10 +385,10 @@ private:
   // aggregate from its members' rows in increasing order: an aggregate's row
   // of L gets exactly its members' finer rows, so the aggregates are
   // independent, and each sum takes its terms in the order of the pass. Both
-  // give the same bits (the thread-determinism tests compare them). The pass
-  // reads the finer rows in order and is the faster on one thread (the
-  // members' rows lie apart: 30% more perf samples by aggregates on the
-  // wing); serial, it was a sixth of the wing's solve on two threads.
+  // give the same bits (the thread-determinism tests compare them). On one
+  // thread the pass is the faster (it reads the finer rows in order, the
+  // members' rows lie apart); on two, the aggregates share out work that
+  // kept the second thread waiting.
   static void sum_values(const Csr_view& a, Level& L, int threads)
   {
     const int nt = thread_count(threads, a.rows);

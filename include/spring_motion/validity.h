@@ -76,11 +76,11 @@ std::size_t find_inverted_elements(const Spring_network<D>& net, const std::vect
                                                 << net.number_of_elements());
   const long m = long(net.number_of_elements());
   std::vector<char> bad(std::size_t(m), 0);
-  // thread-safe: the filtered predicates keep their rounding-mode state per call
   // The elements' vertices lie scattered through x (elements in the file's
   // order): their positions are fetched a few elements ahead, so that the
   // misses overlap the filter's arithmetic instead of stalling it.
   constexpr long ahead = 4;
+  // thread-safe: the filtered predicates keep their rounding-mode state per call
 #pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(m)))
   for(long t = 0; t < m; ++t) {
     if(t + ahead < m)

@@ -429,3 +429,36 @@ TEST_CASE("sorted_faces: the order of a comparison sort of all the records", "[t
   check(internal::Simplex_tables<3>::edge);
   check(internal::Simplex_tables<3>::facet);
 }
+
+TEST_CASE("sorted_faces: a vertex with a long run of faces", "[threads][network]")
+{
+  // A fan of triangles around vertex 0: its run holds two edges of every
+  // triangle, longer than an insertion sort is given, the other runs a few
+  // records each; both kinds must come out in the order of (vertices, slot).
+  const std::uint32_t fan = 300;
+  std::vector<std::array<std::uint32_t, 3>> elements;
+  for(std::uint32_t i = 0; i < fan; ++i) {
+    // rim vertices numbered out of their order around the fan
+    const std::uint32_t a = 1 + (i * 7) % fan, b = 1 + ((i + 1) * 7) % fan;
+    elements.push_back(i % 2 ? std::array<std::uint32_t, 3>{a, 0, b} : std::array<std::uint32_t, 3>{b, a, 0});
+  }
+  const auto& local = internal::Simplex_tables<2>::edge;
+  const std::size_t F = local.size();
+  const auto got = internal::sorted_faces<2>(elements, local, fan + 1);
+  std::vector<std::pair<std::array<std::uint32_t, 2>, std::uint32_t>> expected;
+  for(std::size_t t = 0; t < elements.size(); ++t)
+    for(std::size_t f = 0; f < F; ++f) {
+      std::array<std::uint32_t, 2> v{elements[t][std::size_t(local[f][0])], elements[t][std::size_t(local[f][1])]};
+      std::sort(v.begin(), v.end());
+      expected.push_back({v, std::uint32_t(t * F + f)});
+    }
+  std::sort(expected.begin(), expected.end());
+  REQUIRE(got.size() == expected.size());
+  std::size_t same = 0, run = 0;
+  for(std::size_t r = 0; r < got.size(); ++r) {
+    same += got[r].vertices == expected[r].first && got[r].slot == expected[r].second;
+    run += got[r].vertices[0] == 0;
+  }
+  CHECK(run == 2 * fan);
+  CHECK(same == got.size());
+}

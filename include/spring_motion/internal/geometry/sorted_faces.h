@@ -107,35 +107,35 @@ std::vector<Face_record<K>> sorted_faces(const Elements& elements, const std::ar
     return a.slot < b.slot;
   };
   // A run arrives in slot order, so a stable sort by the other vertices
-  // alone gives the order by (vertices, slot): for edges and triangles that
-  // is one integer key, and an insertion sort by it (stable) handles the
-  // runs of a tetrahedral mesh (on the wing's 298k tetrahedra: 37 records on
-  // average for edges, 28 for facets, at most 133) in half the time std::sort
-  // took with the comparison above; a longer run (a vertex shared by
-  // hundreds of elements) still goes to std::sort. The order is the same: no
-  // two records are equal in (vertices, slot).
+  // alone gives the order by (vertices, slot): for an edge or a triangle
+  // those make one integer, and an insertion sort by it (stable) handles the
+  // runs of a tetrahedral mesh (a few dozen records) in about half the time
+  // std::sort took with the comparison above. A longer run (a vertex shared
+  // by hundreds of elements) still goes to std::sort. The order is the same:
+  // no two records are equal in (vertices, slot).
+  static_assert(K == 2 || K == 3, "faces are edges or triangles");
+  const auto key = [](const Face_record<K>& r) {
+    if constexpr(K == 2)
+      return std::uint64_t(r.vertices[1]);
+    else
+      return std::uint64_t(r.vertices[1]) << 32 | r.vertices[2];
+  };
   constexpr std::ptrdiff_t insertion_limit = 160;
   for(std::size_t v = 0; v < n; ++v) {
     Face_record<K>* first = records.data() + start[v];
     Face_record<K>* last = records.data() + start[v + 1];
-    if constexpr(K == 2 || K == 3) {
-      if(last - first <= insertion_limit) {
-        const auto key = [](const Face_record<K>& r) {
-          return K == 2 ? std::uint64_t(r.vertices[1])
-                        : std::uint64_t(r.vertices[1]) << 32 | r.vertices[std::size_t(K) - 1];
-        };
-        for(Face_record<K>* i = first + 1; i < last; ++i) {
-          const Face_record<K> r = *i;
-          const std::uint64_t k = key(r);
-          Face_record<K>* j = i;
-          for(; j > first && key(j[-1]) > k; --j)
-            *j = j[-1];
-          *j = r;
-        }
-        continue;
-      }
+    if(last - first > insertion_limit) {
+      std::sort(first, last, before);
+      continue;
     }
-    std::sort(first, last, before);
+    for(Face_record<K>* i = first + 1; i < last; ++i) {
+      const Face_record<K> r = *i;
+      const std::uint64_t k = key(r);
+      Face_record<K>* j = i;
+      for(; j > first && key(j[-1]) > k; --j)
+        *j = j[-1];
+      *j = r;
+    }
   }
   return records;
 }

@@ -369,3 +369,159 @@ TEST_CASE("Quality_extremes: a set's largest R and smallest angle, with atan2 on
   CHECK(none.max_skewness(3) == 0);
   CHECK(none.min_angle_deg() == 180);
 }
+
+// The pass-over test of the per-step quality: where it says every sin^2 of a
+// dihedral angle exceeds the bound, the angles computed in extended precision
+// agree; and on well-shaped elements with a bound clearly below their
+// smallest sin^2 it decides (else it would pass over nothing).
+TEST_CASE("dihedral_sines_squared_above: certain when true, and true for well-shaped elements", "[skewness][angles]")
+{
+  namespace si = spring_motion::internal;
+  std::mt19937_64 rng(20261128);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> squash(0, 3);
+  std::size_t said_true = 0, decided = 0;
+  for(int trial = 0; trial < 20000; ++trial) {
+    const double f = std::pow(10.0, -2 * squash(rng));
+    std::array<std::array<double, 3>, 4> p;
+    for(auto& q : p)
+      q = {u(rng), u(rng), f * u(rng)};
+    // sizes far from 1 too: the products of lengths must not over- or underflow
+    const double size = std::pow(10.0, double(int(rng() % 41) - 20));
+    for(auto& q : p)
+      for(auto& x : q)
+        x *= size;
+    const auto angles = extended_dihedral_angles(p);
+    long double smallest = 1;
+    for(const long double a : angles)
+      smallest = std::min(smallest, std::sin(a) * std::sin(a));
+    // 6|V| against the longest edge cubed, in extended precision
+    long double v[3][3], longest = 0;
+    for(int k = 0; k < 3; ++k)
+      for(int c = 0; c < 3; ++c)
+        v[k][c] = (long double)(p[std::size_t(k) + 1][std::size_t(c)]) - p[0][std::size_t(c)];
+    const long double volume6 = std::abs(v[0][0] * (v[1][1] * v[2][2] - v[1][2] * v[2][1]) -
+                                         v[0][1] * (v[1][0] * v[2][2] - v[1][2] * v[2][0]) +
+                                         v[0][2] * (v[1][0] * v[2][1] - v[1][1] * v[2][0]));
+    for(int a = 0; a < 4; ++a)
+      for(int b = 0; b < a; ++b) {
+        long double l2 = 0;
+        for(int c = 0; c < 3; ++c)
+          l2 += ((long double)(p[std::size_t(a)][std::size_t(c)]) - p[std::size_t(b)][std::size_t(c)]) *
+                ((long double)(p[std::size_t(a)][std::size_t(c)]) - p[std::size_t(b)][std::size_t(c)]);
+        longest = std::max(longest, std::sqrt(l2));
+      }
+    const bool well_shaped = volume6 >= 1e-5L * longest * longest * longest;
+    INFO("trial " << trial << ", smallest sin^2 " << double(smallest) << ", 6V / L^3 "
+                  << double(volume6 / (longest * longest * longest)));
+    for(const double factor : {0.0, 0.5, 0.99, 1 - 1e-5, 1 - 1e-9, 1 + 1e-9, 1.01, 2.0}) {
+      const double bound = double(smallest) * factor;
+      const bool above = si::dihedral_sines_squared_above(p, bound);
+      said_true += above;
+      if(above)
+        CHECK(smallest > bound);
+      if(well_shaped && factor <= 0.99) {
+        CHECK(above);
+        ++decided;
+      }
+    }
+  }
+  CHECK(said_true > 10000);
+  CHECK(decided > 10000);
+  // flat, coincident and non-finite corners: never passed over
+  const std::array<std::array<double, 3>, 4> flat{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}};
+  CHECK_FALSE(si::dihedral_sines_squared_above(flat, 0));
+  const std::array<std::array<double, 3>, 4> pinched{{{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  CHECK_FALSE(si::dihedral_sines_squared_above(pinched, 0));
+  std::array<std::array<double, 3>, 4> corner{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  CHECK(si::dihedral_sines_squared_above(corner, 0.5)); // sin^2 of its angles: 1 and 2/3
+  CHECK_FALSE(si::dihedral_sines_squared_above(corner, 0.7));
+  corner[3][2] = std::numeric_limits<double>::infinity();
+  CHECK_FALSE(si::dihedral_sines_squared_above(corner, 0));
+  corner[3][2] = std::nan("");
+  CHECK_FALSE(si::dihedral_sines_squared_above(corner, 0));
+}
+
+// Quality_extremes::add_tetrahedron on jittered lattices of tetrahedra with
+// slivers, needles and flat elements among them, and copies of the extreme
+// elements moved by rounding-sized amounts (where a pass-over would have
+// to be exact to the last bit): the same numbers as add() of every element,
+// bitwise, with most elements passed over.
+TEST_CASE("Quality_extremes::add_tetrahedron: add()'s numbers bitwise, most elements passed over",
+          "[skewness][angles]")
+{
+  namespace si = spring_motion::internal;
+  using Tet = std::array<std::array<double, 3>, 4>;
+  std::mt19937_64 rng(202611281);
+  std::uniform_real_distribution<double> u(-1, 1);
+  // the six tetrahedra of a cube around its diagonal 0-7 (corner c = x + 2y + 4z)
+  const int kuhn[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
+  std::size_t passed = 0, total = 0;
+  for(int set = 0; set < 40; ++set) {
+    const int n = 4 + set % 4;
+    const double jitter = 0.05 + 0.3 * double(set % 5) / 4;
+    std::vector<P3> grid;
+    for(int z = 0; z <= n; ++z)
+      for(int y = 0; y <= n; ++y)
+        for(int x = 0; x <= n; ++x)
+          grid.push_back({x + jitter * u(rng), y + jitter * u(rng), z + jitter * u(rng)});
+    const auto at = [&](int x, int y, int z) { return grid[std::size_t((z * (n + 1) + y) * (n + 1) + x)]; };
+    std::vector<Tet> tets;
+    for(int z = 0; z < n; ++z)
+      for(int y = 0; y < n; ++y)
+        for(int x = 0; x < n; ++x)
+          for(const auto& k : kuhn) {
+            Tet t;
+            for(int v = 0; v < 4; ++v)
+              t[std::size_t(v)] = at(x + (k[v] & 1), y + (k[v] >> 1 & 1), z + (k[v] >> 2));
+            tets.push_back(t);
+          }
+    // odd elements at random places: a sliver, a needle, a flat one
+    for(int i = 0; i < 3; ++i) {
+      Tet t = tets[rng() % tets.size()];
+      if(i == 0)
+        t[3] = {(t[0][0] + t[1][0] + t[2][0]) / 3 + 1e-3 * u(rng), (t[0][1] + t[1][1] + t[2][1]) / 3,
+                (t[0][2] + t[1][2] + t[2][2]) / 3};
+      else if(i == 1)
+        t[3] = {t[0][0] + 50, t[0][1] + 1e-2, t[0][2]};
+      else if(set % 10 == 3)
+        t[3] = t[0];
+      tets.insert(tets.begin() + long(rng() % tets.size()), t);
+    }
+    // rounding-sized copies of the elements holding the extremes, after them
+    const auto rank_of = [&](bool largest) {
+      std::size_t best = 0;
+      for(std::size_t i = 1; i < tets.size(); ++i) {
+        const auto a = si::dihedral_angle_range(tets[i]), b = si::dihedral_angle_range(tets[best]);
+        if(largest ? a[1] > b[1] : a[0] < b[0])
+          best = i;
+      }
+      return best;
+    };
+    for(const bool largest : {false, true}) {
+      const std::size_t e = rank_of(largest);
+      for(int copy = 0; copy < 20; ++copy) {
+        Tet t = tets[e];
+        for(auto& q : t)
+          for(auto& x : q)
+            x *= 1 + 1e-16 * double(int(rng() % 9) - 4);
+        tets.insert(tets.begin() + long(e + 1 + rng() % (tets.size() - e)), t);
+      }
+    }
+    si::Quality_extremes every, passing, first, second;
+    const std::size_t split = rng() % tets.size();
+    for(std::size_t i = 0; i < tets.size(); ++i) {
+      every.add(si::dihedral_extreme_angles(tets[i]));
+      passed += passing.add_tetrahedron(tets[i]);
+      (i < split ? first : second).add_tetrahedron(tets[i]);
+    }
+    total += tets.size();
+    first.merge(second);
+    INFO("set " << set << ", " << tets.size() << " elements, jitter " << jitter);
+    CHECK(passing.max_skewness(3) == every.max_skewness(3));
+    CHECK(passing.min_angle_deg() == every.min_angle_deg());
+    CHECK(first.max_skewness(3) == every.max_skewness(3));
+    CHECK(first.min_angle_deg() == every.min_angle_deg());
+  }
+  CHECK(passed > total / 2);
+}

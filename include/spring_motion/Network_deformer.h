@@ -358,7 +358,10 @@ private:
   // (which made min_size_ratio 0/0).
   double scaled_measure(const std::vector<Point>& x, std::size_t t) const
   {
-    auto p = internal::element_points<D>(net_.elements, x, t);
+    return scaled_measure(internal::element_points<D>(net_.elements, x, t));
+  }
+  double scaled_measure(std::array<Point, D + 1> p) const
+  {
     for(auto& q : p)
       for(auto& c : q)
         c = measure_scale_ != 0 ? c * measure_scale_ : std::ldexp(c, measure_exponent_);
@@ -389,13 +392,26 @@ private:
       double my_lo = lo, my_hi = hi;
 #pragma omp for schedule(static) nowait
       for(long t = 0; t < m; ++t) {
-        const auto e = internal::element_extreme_angles(net_, positions_, std::size_t(t));
-        my_all.add(e);
-        if(touches_moving_[std::size_t(t)])
+        const auto p = internal::element_points<D>(net_.elements, positions_, std::size_t(t));
+        // Most elements can hold neither an extreme angle (3D: passed over
+        // by a cheap bound) nor an extreme size ratio: a measure farther than
+        // 1e-12 (relative) inside the extremes so far times the initial one
+        // gives a quotient inside them too, and is not divided.
+        if(touches_moving_[std::size_t(t)]) {
+          const auto e = internal::element_extreme_angles<D>(p);
+          my_all.add(e);
           my_moving.add(e);
-        const double ratio = scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)];
-        my_lo = std::min(my_lo, ratio);
-        my_hi = std::max(my_hi, ratio);
+        } else if constexpr(D == 3)
+          my_all.add_tetrahedron(p);
+        else
+          my_all.add(internal::element_extreme_angles<D>(p));
+        const double measure = scaled_measure(p), initial = initial_measure_[std::size_t(t)];
+        const double below = my_lo * initial, above = my_hi * initial;
+        if(!(initial > 0 && measure - below > 1e-12 * std::abs(below) && above - measure > 1e-12 * std::abs(above))) {
+          const double ratio = measure / initial;
+          my_lo = std::min(my_lo, ratio);
+          my_hi = std::max(my_hi, ratio);
+        }
       }
 #pragma omp critical(spring_motion_step_quality)
       {

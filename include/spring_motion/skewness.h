@@ -86,16 +86,14 @@ std::array<double, 2> skewness_and_smallest_angle(const Spring_network<D>& net,
 } // namespace internal
 
 namespace internal {
-/// The extreme angles of element t at positions x (skewness_and_smallest_angle's).
+/// The extreme angles of the element with corners p (skewness_and_smallest_angle's).
 template <int D>
-Extreme_angles element_extreme_angles(const Spring_network<D>& net,
-                                      const std::vector<typename Spring_network<D>::Point>& x, std::size_t t)
+Extreme_angles element_extreme_angles(const std::array<std::array<double, D>, D + 1>& p)
 {
-  const auto& e = net.elements[t];
   if constexpr(D == 2)
-    return triangle_extreme_angles<2>(x[e[0]], x[e[1]], x[e[2]]);
+    return triangle_extreme_angles<2>(p[0], p[1], p[2]);
   else
-    return dihedral_extreme_angles({x[e[0]], x[e[1]], x[e[2]], x[e[3]]});
+    return dihedral_extreme_angles(p);
 }
 
 /// The largest R and the smallest angle over a set of elements: the same
@@ -144,6 +142,28 @@ public:
     min_key_ = std::min(min_key_, kl);
     max_key_ = std::max(max_key_, kh);
   }
+  /// 3D: adds tetrahedron p, as add(dihedral_extreme_angles(p)) would, and
+  /// returns true when it was passed over without computing its extreme
+  /// angles: every dihedral angle lies inside (a, pi - a) for a the larger
+  /// of the smallest angle so far and pi minus the largest, so it changes
+  /// neither (dihedral_sines_squared_above). On the wing, after the first
+  /// few hundred elements, nearly all are passed over.
+  bool add_tetrahedron(const std::array<std::array<double, 3>, 4>& p)
+  {
+    if(smallest_ != bound_smallest_ || r_hi_ != bound_largest_) {
+      bound_smallest_ = smallest_;
+      bound_largest_ = r_hi_;
+      const double a = std::max(smallest_, pi - r_hi_);
+      // no element yet, or no obtuse angle yet: (a, pi - a) is empty
+      bound_ = a >= 0 && a < pi / 2 ? std::sin(a) * std::sin(a) : std::numeric_limits<double>::infinity();
+    }
+    if(!not_a_number_ && bound_ < 1 && dihedral_sines_squared_above(p, bound_)) {
+      ++count_;
+      return true;
+    }
+    add(dihedral_extreme_angles(p));
+    return false;
+  }
   void merge(const Quality_extremes& o)
   {
     count_ += o.count_;
@@ -185,6 +205,8 @@ private:
   double min_key_ = std::numeric_limits<double>::infinity(), max_key_ = -min_key_;
   double smallest_ = min_key_;          // the smallest of the elements' smallest angles
   double r_lo_ = min_key_, r_hi_ = -r_lo_; // what R reads: min and max over both extremes
+  // add_tetrahedron's sin^2 bound and the extremes it was computed from
+  double bound_ = std::numeric_limits<double>::infinity(), bound_smallest_ = 0, bound_largest_ = 0;
 };
 } // namespace internal
 

@@ -315,6 +315,47 @@ inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<do
   return {e.lo.angle(), e.hi.angle()};
 }
 
+/// Whether every dihedral angle theta of tetrahedron p certainly has
+/// sin^2(theta) > `sine_squared`, that is lies strictly between alpha and
+/// pi - alpha for sin^2(alpha) = sine_squared: a test with no square root,
+/// division or trigonometry, for passing over the elements that cannot hold
+/// a set's extreme angles (Quality_extremes::add_tetrahedron). With g_i as in
+/// dihedral_extreme_angles, sin^2 at the edge of length l between faces i and
+/// j is (6V)^2 l^2 / (|g_i|^2 |g_j|^2): compared by products. It answers false
+/// (decides nothing) unless the element is well conditioned, 6|V| >= 1e-6
+/// L^3 for its longest edge L, which bounds every edge below by 1e-6 L and
+/// every |g_i| below by 1e-6 L^2: the rounding errors of the products are
+/// then below 1e-9 of their values, far inside the comparison's margin of
+/// 1e-6. L^2 between 1e-60 and 1e60 (checked; a coordinate that is not
+/// finite fails it) keeps the products finite and normal.
+inline bool dihedral_sines_squared_above(const std::array<std::array<double, 3>, 4>& p, double sine_squared)
+{
+  const double ax = p[1][0] - p[0][0], ay = p[1][1] - p[0][1], az = p[1][2] - p[0][2];
+  const double bx = p[2][0] - p[0][0], by = p[2][1] - p[0][1], bz = p[2][2] - p[0][2];
+  const double cx = p[3][0] - p[0][0], cy = p[3][1] - p[0][1], cz = p[3][2] - p[0][2];
+  const double g1x = by * cz - bz * cy, g1y = bz * cx - bx * cz, g1z = bx * cy - by * cx;
+  const double g2x = cy * az - cz * ay, g2y = cz * ax - cx * az, g2z = cx * ay - cy * ax;
+  const double g3x = ay * bz - az * by, g3y = az * bx - ax * bz, g3z = ax * by - ay * bx;
+  const double g0x = -(g1x + g2x + g3x), g0y = -(g1y + g2y + g3y), g0z = -(g1z + g2z + g3z);
+  const double v = ax * g1x + ay * g1y + az * g1z, v2 = v * v;
+  const double f0 = g0x * g0x + g0y * g0y + g0z * g0z, f1 = g1x * g1x + g1y * g1y + g1z * g1z,
+               f2 = g2x * g2x + g2y * g2y + g2z * g2z, f3 = g3x * g3x + g3y * g3y + g3z * g3z;
+  const double dx = bx - ax, dy = by - ay, dz = bz - az; // edge 12
+  const double ex = cx - ax, ey = cy - ay, ez = cz - az; // edge 13
+  const double hx = cx - bx, hy = cy - by, hz = cz - bz; // edge 23
+  // squared lengths in Simplex_tables<3>::edge order: 01 02 03 12 13 23
+  const double l01 = ax * ax + ay * ay + az * az, l02 = bx * bx + by * by + bz * bz,
+               l03 = cx * cx + cy * cy + cz * cz, l12 = dx * dx + dy * dy + dz * dz,
+               l13 = ex * ex + ey * ey + ez * ez, l23 = hx * hx + hy * hy + hz * hz;
+  const double longest = std::max({l01, l02, l03, l12, l13, l23});
+  const double t = sine_squared * (1 + 1e-6);
+  // the faces at edge k are those opposite its two other vertices
+  // (Simplex_tables<3>::other); & rather than &&: no branch per edge
+  return (longest >= 1e-60) & (longest <= 1e60) & (v2 >= 1e-12 * longest * longest * longest) &
+         (v2 * l01 > t * (f2 * f3)) & (v2 * l02 > t * (f1 * f3)) & (v2 * l03 > t * (f1 * f2)) &
+         (v2 * l12 > t * (f0 * f3)) & (v2 * l13 > t * (f0 * f2)) & (v2 * l23 > t * (f0 * f1));
+}
+
 /// 1/sin^2 of the triangle's angle at each vertex, as triangle_angles
 /// orders them, without trigonometry: sin^2 at vertex k is |u x w|^2 /
 /// (|u|^2 |w|^2) for the two edges u, w leaving it. The triangle is first

@@ -459,7 +459,10 @@ TEST_CASE("Quality_extremes::add_tetrahedron: add()'s numbers bitwise, most elem
   std::size_t passed = 0, total = 0;
   for(int set = 0; set < 40; ++set) {
     const int n = 4 + set % 4;
-    const double jitter = 0.05 + 0.3 * double(set % 5) / 4;
+    // the wedge's sets nearly regular (angles near 45, 60 and 90 degrees):
+    // the wedge then holds the largest angle, and R, with its smallest angle
+    // above the lattice's
+    const double jitter = set % 2 == 1 ? 0.01 : 0.05 + 0.3 * double(set % 5) / 4;
     std::vector<P3> grid;
     for(int z = 0; z <= n; ++z)
       for(int y = 0; y <= n; ++y)
@@ -476,12 +479,17 @@ TEST_CASE("Quality_extremes::add_tetrahedron: add()'s numbers bitwise, most elem
               t[std::size_t(v)] = at(x + (k[v] & 1), y + (k[v] >> 1 & 1), z + (k[v] >> 2));
             tets.push_back(t);
           }
-    // odd elements at random places: a sliver, a needle, a flat one
+    // odd elements at random places: a sliver (its smallest angle decides
+    // R) or a wedge (angles from 52 to 122 degrees), a needle, a flat one
     for(int i = 0; i < 3; ++i) {
       Tet t = tets[rng() % tets.size()];
-      if(i == 0)
+      if(i == 0 && set % 2 == 0)
         t[3] = {(t[0][0] + t[1][0] + t[2][0]) / 3 + 1e-3 * u(rng), (t[0][1] + t[1][1] + t[2][1]) / 3,
                 (t[0][2] + t[1][2] + t[2][2]) / 3};
+      else if(i == 0)
+        for(int v = 1; v < 4; ++v)
+          t[std::size_t(v)] = {t[0][0] + (v == 1 ? 1 : 0.5), t[0][1] + (v == 1 ? 0 : v == 2 ? 0.9 : -0.9),
+                               t[0][2] + (v == 1 ? 0 : 0.5)};
       else if(i == 1)
         t[3] = {t[0][0] + 50, t[0][1] + 1e-2, t[0][2]};
       else if(set % 10 == 3)

@@ -146,8 +146,8 @@ public:
   /// returns true when it was passed over without computing its extreme
   /// angles: every dihedral angle lies inside (a, pi - a) for a the larger
   /// of the smallest angle so far and pi minus the largest, so it changes
-  /// neither (dihedral_sines_squared_above). On the wing, after the first
-  /// few hundred elements, nearly all are passed over.
+  /// neither (dihedral_sines_squared_above). On the wing nearly all
+  /// elements are passed over.
   bool add_tetrahedron(const std::array<std::array<double, 3>, 4>& p)
   {
     if(smallest_ != bound_smallest_ || r_hi_ != bound_largest_) {

@@ -13,6 +13,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -189,4 +191,38 @@ TEST_CASE("inverse sin^2: the models that read it give the stiffness of their an
     check(Zeng_Ethier_semi_torsional_stiffness{}, 1e-12);
     check(Zeng_Ethier_semi_torsional_stiffness{Angle_kind::element}, 1e-12);
   }
+}
+
+TEST_CASE("inverse sin^2: sum() adds the values in order, bitwise, whatever follows them", "[stiffness][angles]")
+{
+  // values of every size the branch-free path takes (0..8) and more, then
+  // padding that must not count: NaN, infinities, huge and negative values
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> exponent(-300, 200);
+  const double junk[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                         -std::numeric_limits<double>::infinity(), -1e300, 1e300, -0.0};
+  int checked = 0;
+  for(std::size_t size = 0; size <= 12; ++size)
+    for(double fill : junk)
+      for(int trial = 0; trial < 20; ++trial) {
+        std::vector<double> v(size + Inverse_sin_squared::padded_size, fill);
+        for(std::size_t m = 0; m < size; ++m)
+          v[m] = std::pow(10.0, exponent(rng)); // sums that round
+        for(double start : {0.0, 1.5, 1e200, std::pow(10.0, exponent(rng))}) {
+          double expected = start;
+          for(std::size_t m = 0; m < size; ++m)
+            expected += v[m];
+          // readable: none said, exactly the values, the padded width, all
+          for(std::size_t readable : {std::size_t(0), size, Inverse_sin_squared::padded_size, v.size()}) {
+            const double s = Inverse_sin_squared{v.data(), size, readable}.sum(start);
+            INFO("size " << size << " readable " << readable << " fill " << fill << " start " << start);
+            CHECK(std::memcmp(&s, &expected, sizeof s) == 0);
+            ++checked;
+          }
+        }
+      }
+  CHECK(checked == 13 * 6 * 20 * 4 * 4);
+  // a NaN start stays NaN (the models' check then reports the edge)
+  const std::vector<double> v(Inverse_sin_squared::padded_size, 1.0);
+  CHECK(std::isnan(Inverse_sin_squared{v.data(), 3, v.size()}.sum(std::numeric_limits<double>::quiet_NaN())));
 }

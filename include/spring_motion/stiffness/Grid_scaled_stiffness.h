@@ -42,10 +42,7 @@ struct Grid_scaled_stiffness
   }
   double operator()(double length, Inverse_sin_squared angles, const Stiffness_context& ctx) const
   {
-    double s = 0;
-    for(std::size_t m = 0; m < angles.size; ++m)
-      s += angles.values[m];
-    return from_angle_sum(length, s, ctx);
+    return from_angle_sum(length, angles.sum(), ctx);
   }
   Model_description description(int dimension) const
   {

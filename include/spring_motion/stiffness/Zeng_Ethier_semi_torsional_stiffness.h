@@ -25,10 +25,7 @@ struct Zeng_Ethier_semi_torsional_stiffness
   }
   double operator()(double length, Inverse_sin_squared angles, const Stiffness_context&) const
   {
-    double s = internal::capped_quotient(1.0, length);
-    for(std::size_t m = 0; m < angles.size; ++m)
-      s += angles.values[m];
-    return internal::cap_stiffness(s);
+    return internal::cap_stiffness(angles.sum(internal::capped_quotient(1.0, length)));
   }
   Model_description description(int) const
   {

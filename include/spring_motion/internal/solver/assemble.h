@@ -88,6 +88,10 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   // element angles: edges in the layout's order; face angles: in edge order
   const bool by_layout = kind != Angle_kind::none && !by_face;
   std::vector<double>& angles = scratch.angles;
+  // Readable values after the last edge's angles, so that every edge's
+  // Inverse_sin_squared::sum may take its branch-free path. Only in 3D: in 2D
+  // an edge has one or two angles, a loop whose exit the predictor gets right.
+  constexpr std::size_t padding = (D == 3 && sines) ? Inverse_sin_squared::padded_size : 0;
   auto& xt = scratch.points;
   if(by_layout) {
     const long nt = long(slots.traversal_vertices.size());
@@ -95,7 +99,7 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(nt)))
     for(long v = 0; v < nt; ++v)
       xt[std::size_t(v)] = x[slots.traversal_vertices[std::size_t(v)]];
-    angles.resize(std::size_t(m) * E);
+    angles.resize(std::size_t(m) * E + padding);
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
     for(long i = 0; i < m; ++i) {
       std::array<std::array<double, D>, D + 1> p;
@@ -112,7 +116,7 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   } else if(by_face) {
     if constexpr(D == 3) {
       const long nf = long(slots.faces.size());
-      angles.resize(std::size_t(nf) * 3);
+      angles.resize(std::size_t(nf) * 3 + padding);
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(nf)))
       for(long f = 0; f < nf; ++f) {
         const auto& F = slots.faces[std::size_t(f)];
@@ -147,16 +151,18 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
       l = distance<D>(x[ed[0]], x[ed[1]]);
     }
     const double* a = nullptr;
-    std::size_t na = 0;
+    std::size_t na = 0, readable = 0;
     if(kind != Angle_kind::none) {
       a = angles.data() + off[std::size_t(q)];
       na = off[std::size_t(q) + 1] - off[std::size_t(q)];
+      if(padding > 0)
+        readable = angles.size() - off[std::size_t(q)];
     }
     // a zero-length edge (coincident vertices) never reaches a model's 1/l
     double v = 0.0;
     if(l > 0) {
       if constexpr(sines)
-        v = model(l, Inverse_sin_squared{a, na}, context);
+        v = model(l, Inverse_sin_squared{a, na, readable}, context);
       else
         v = model(l, a, na, context);
     }

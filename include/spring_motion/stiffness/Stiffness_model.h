@@ -67,7 +67,7 @@ struct Inverse_sin_squared
   /// predictor can follow, so a loop over them mispredicts its exit at many
   /// edges. When `padded_size` values are readable and size <= padded_size,
   /// all of them are added instead, those past `size` replaced by +0 through
-  /// a bit mask, with no branch: an eighth less time in the 3D edge loop of
+  /// a bit mask, with no branch: a seventh less time in the 3D edge loop of
   /// the stiffness on the wing (perf samples). s + 0 == s for every s but
   /// -0, and start is never -0 in the models here (0, 1/l), so the sum has
   /// the loop's bits.

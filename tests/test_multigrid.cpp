@@ -10,6 +10,7 @@
 // is in test_solver.cpp.
 #include <spring_motion/spring_motion.h>
 #include <spring_motion/internal/solver/aggregation_multigrid.h>
+#include <spring_motion/internal/solver/aggregation_refresh.h>
 #include <spring_motion/internal/solver/rigid_body_multigrid.h>
 
 #include "test_meshes.h"
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace spring_motion;
@@ -554,4 +556,54 @@ TEST_CASE("dense Cholesky: the interleaved rows give the bits of a row-by-row fa
   CHECK_FALSE(internal::try_dense_cholesky(weak, 2, 1e-12));
   std::vector<double> fine{1, 1, 1, 1 + 1e-11};
   CHECK(internal::try_dense_cholesky(fine, 2, 1e-12));
+}
+
+namespace {
+// The decisions of an Aggregation_refresh fed `iterations`, one solve each:
+// 'R' where the next solve chooses its aggregates again (and they are), '.'
+// where it does not.
+std::string refresh_decisions(const std::vector<std::size_t>& iterations)
+{
+  internal::Aggregation_refresh refresh;
+  std::string out;
+  for(std::size_t it : iterations) {
+    refresh.record(it);
+    out += refresh.due() ? 'R' : '.';
+    if(refresh.due())
+      refresh.rebuilt();
+  }
+  return out;
+}
+} // namespace
+
+TEST_CASE("multigrid: the aggregates are chosen again only after a streak of slow solves", "[solver][multigrid]")
+{
+  // the cold start (17, 10) is no reference; then five iterations a step
+  CHECK(refresh_decisions({17, 10, 5, 6, 7, 5, 5, 5}) == "........");
+  // isolated slow solves (a warm start that guessed badly), even periodic ones
+  CHECK(refresh_decisions({17, 6, 5, 5, 9, 5, 5, 9, 5, 5, 9, 5, 9, 9, 5}) == "...............");
+  // slow means at least 3/2 of the fewest and at least 3 more: 7 is neither
+  // 8 nor 5 + 3 away from 5 ...
+  CHECK(refresh_decisions({17, 5, 7, 7, 7, 7, 7}) == ".......");
+  // ... 8 is both: the third 8 in a row triggers the rebuild, a fourth does
+  // not count against the new aggregates, whose first solve is no reference
+  CHECK(refresh_decisions({17, 5, 8, 8, 8, 8, 5, 5}) == "....R...");
+  // the wing numbered along a space-filling curve, as it ran with aggregates
+  // kept from the first step: the streak 8, 14, 14 triggers it
+  CHECK(refresh_decisions({17, 10, 5, 6, 6, 7, 7, 5, 8, 5, 7, 5, 8, 7, 8, 14, 14, 5, 5}) ==
+        "................R..");
+  // with few iterations the margin of 3 decides: 2 -> 3 and 4 -> 6 are 3/2
+  // but not slow; with many the ratio does: 8 -> 11 is 3 more but not slow
+  CHECK(refresh_decisions({9, 2, 3, 3, 3, 3}) == "......");
+  CHECK(refresh_decisions({9, 4, 6, 6, 6, 6}) == "......");
+  CHECK(refresh_decisions({9, 2, 5, 5, 5, 5}) == "....R.");
+  CHECK(refresh_decisions({17, 8, 11, 11, 11, 11}) == "......");
+  CHECK(refresh_decisions({17, 8, 12, 12, 12, 12}) == "....R.");
+  // the first solve is no reference even when it is the fastest
+  CHECK(refresh_decisions({5, 17, 17, 17, 17}) == ".....");
+  // a rebuild that did not help sets a higher reference: no rebuild every
+  // few solves on a system that is simply harder
+  CHECK(refresh_decisions({17, 5, 10, 10, 10, 10, 10, 10, 10, 10, 10, 10}) == "....R.......");
+  // a streak broken by a fast solve starts again
+  CHECK(refresh_decisions({17, 5, 9, 9, 5, 9, 9, 5, 9, 9, 9}) == "..........R");
 }

@@ -254,8 +254,9 @@ void dense_cholesky_solve(const std::vector<double>& l, std::size_t n, const dou
 /// one unknown of the next level, and the next level's matrix is the sum of
 /// the level's matrix over aggregate pairs (P^T A P with P piecewise
 /// constant). Block systems take Rigid_body_multigrid, whose coarse functions
-/// also rotate each aggregate. The aggregates are chosen once, from the first
-/// system's values; the values are summed again for every new system
+/// also rotate each aggregate. The aggregates are chosen by `build`, from the
+/// values of the system at hand (the caller decides when: Aggregation_refresh);
+/// the values are summed again for every new system
 /// (`load`), which costs one pass over the fine pattern. The coarsest level is
 /// solved by a dense Cholesky factorisation.
 ///

@@ -6,6 +6,7 @@
 #include <spring_motion/Solver_options.h>
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/internal/solver/aggregation_multigrid.h>
+#include <spring_motion/internal/solver/aggregation_refresh.h>
 #include <spring_motion/internal/solver/rigid_body_multigrid.h>
 #include <spring_motion/internal/solver/block_ops.h>
 #include <spring_motion/internal/solver/stopping_test.h>
@@ -52,7 +53,9 @@ constexpr std::size_t element_chunk = 512;
 /// state: `build` makes them for a network, a free set, scalar or block, and
 /// the options they depend on (`needs_build` says when they are stale); every
 /// step then only refills the values (`load_scalar`, or the block assembler
-/// of assemble.h) and the start (`set_start`).
+/// of assemble.h) and the start (`set_start`). The aggregates are chosen on
+/// the first multigrid solve, and again when solves slow down
+/// (Aggregation_refresh).
 template <int D>
 class Free_system
 {
@@ -147,6 +150,7 @@ public:
                              o.multigrid_max_direct_rows};
     rigid_ = Rigid_body_multigrid<D>();
     rigid_.parameters = multigrid_.parameters;
+    refresh_ = Aggregation_refresh();
     const std::size_t n = net.number_of_vertices();
     const std::size_t nf = free_vertices.size();
     std::vector<Index> row_of(n, none);
@@ -881,6 +885,8 @@ private:
             p_[std::size_t(k)][c] = z_[std::size_t(k)][c] + beta * p_[std::size_t(k)][c];
       }
     }
+    if(pc.cycle && report.converged)
+      refresh_.record(report.iterations);
     report.residual = scaled_residual<B>(threads);
     SPRING_MOTION_CHECK(std::isfinite(report.residual), "the solver produced a non-finite value");
     if(!report.converged && report.iterations < options.max_iterations) // a vanishing recurrence residual
@@ -913,12 +919,16 @@ private:
         row_points_.resize(order_.size());
         for(std::size_t r = 0; r < order_.size(); ++r)
           row_points_[r] = (*positions_)[order_[r]];
-        if(!rigid_.built())
+        if(!rigid_.built() || refresh_.due()) {
           rigid_.build(fine, row_points_.data(), options.threads);
+          refresh_.rebuilt();
+        }
         rigid_.load(fine, row_points_.data(), options.threads);
       } else {
-        if(!multigrid_.built())
+        if(!multigrid_.built() || refresh_.due()) {
           multigrid_.build(fine, options.threads);
+          refresh_.rebuilt();
+        }
         multigrid_.load(fine, options.threads);
       }
     }
@@ -1230,6 +1240,7 @@ private:
   std::vector<Row> b_, x_, r_, z_, p_, q_, s_;
   Aggregation_multigrid<D> multigrid_;
   Rigid_body_multigrid<D> rigid_;
+  Aggregation_refresh refresh_; // when the multigrid's aggregates are chosen again
   const std::vector<Row>* positions_ = nullptr;
   std::vector<Row> row_points_;
 };

@@ -41,7 +41,8 @@ namespace internal {
 /// aggregate b by the rigid motion of b: u_a = U_b + S(c_a - c_b) W_b, w_a =
 /// W_b. Every level's matrix is the Galerkin product P^T A P of the level
 /// above, recomputed from the new values and positions at every `load`;
-/// the aggregates are chosen once, at `build`. The coarsest level is solved
+/// the aggregates are chosen at `build` (when: Aggregation_refresh). The
+/// coarsest level is solved
 /// by a dense Cholesky factorisation.
 ///
 /// The result does not depend on the thread count: the Gauss-Seidel sweeps

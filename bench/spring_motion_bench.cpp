@@ -664,6 +664,84 @@ Row measure(const Case<D>& c, const std::vector<double>& bandwidth)
 // then the multigrid's strength and correction factor about their defaults:
 // iterations and solve time summed over the steps, and the largest true
 // error of a step's solve against SimplicialLDLT on its captured system.
+// The case with its vertices numbered along a Morton curve (by the code of
+// their position) and its elements by their smallest new vertex, as meshers
+// and converters that sort their output in space number a mesh. The
+// solver's ordering and its multigrid aggregates are chosen from the
+// numbering, so the iterations a run needs may depend on it.
+template <int D>
+Case<D> spatially_numbered(const Case<D>& c)
+{
+  const std::size_t n = c.net.number_of_vertices();
+  std::array<double, D> lo, hi;
+  lo.fill(std::numeric_limits<double>::infinity());
+  hi.fill(-std::numeric_limits<double>::infinity());
+  for(const auto& p : c.net.points)
+    for(int k = 0; k < D; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  std::vector<std::pair<std::uint64_t, sm::Index>> key(n);
+  for(std::size_t i = 0; i < n; ++i) {
+    std::array<std::uint32_t, D> q;
+    for(int k = 0; k < D; ++k)
+      q[k] = std::uint32_t((c.net.points[i][k] - lo[k]) / (hi[k] - lo[k]) * double((1u << 20) - 1));
+    key[i] = {sm::internal::morton_code<D>(q), sm::Index(i)};
+  }
+  std::sort(key.begin(), key.end());
+  std::vector<sm::Index> new_of(n);
+  std::vector<std::array<double, D>> points(n);
+  Case<D> r;
+  r.roles.resize(n);
+  for(std::size_t k = 0; k < n; ++k) {
+    new_of[key[k].second] = sm::Index(k);
+    points[k] = c.net.points[key[k].second];
+    r.roles[k] = c.roles[key[k].second];
+  }
+  std::vector<std::array<sm::Index, D + 1>> elements;
+  for(const auto& e : c.net.elements) {
+    std::array<sm::Index, D + 1> f;
+    for(int k = 0; k <= D; ++k)
+      f[std::size_t(k)] = new_of[e[std::size_t(k)]];
+    elements.push_back(f);
+  }
+  std::stable_sort(elements.begin(), elements.end(), [](const auto& a, const auto& b) {
+    return *std::min_element(a.begin(), a.end()) < *std::min_element(b.begin(), b.end());
+  });
+  r.name = c.name;
+  r.net = sm::make_spring_network<D>(std::move(points), std::move(elements));
+  r.motion = c.motion;
+  r.steps = c.steps;
+  r.of_steps = c.of_steps;
+  return r;
+}
+
+// The whole run (default threads) on the case as meshed and numbered along
+// a Morton curve: solver iterations and run time of each, as a table.
+template <int D>
+std::string numbering_table(const Case<D>& c)
+{
+  progress(c.name + ": the run as meshed and with the vertices numbered along a Morton curve");
+  const Case<D> spatial = spatially_numbered(c);
+  std::ostringstream out;
+  char line[160];
+  std::snprintf(line, sizeof line, "\nVertex numbering, %s, grid-scaled, %zu steps, default threads:\n", c.name.c_str(),
+                c.steps);
+  out << line;
+  std::snprintf(line, sizeof line, "%-34s %10s %8s\n", "numbering", "iterations", "run s");
+  out << line;
+  for(const Case<D>* k : {&c, &spatial}) {
+    const auto rep = run_once<D>(*k, sm::Solver_options{}, nullptr);
+    std::size_t iterations = 0;
+    for(const auto& s : rep.steps)
+      iterations += s.iterations;
+    std::snprintf(line, sizeof line, "%-34s %10zu %8.3f%s\n", k == &c ? "as meshed" : "along a Morton curve",
+                  iterations, rep.seconds_total, rep.completed ? "" : " (not completed)");
+    out << line;
+  }
+  return out.str();
+}
+
 template <int D>
 void omega_table(const Case<D>& c)
 {
@@ -1353,6 +1431,7 @@ int main(int argc, char** argv)
   }
   std::vector<Row> rows;
   std::vector<Block_row> block_rows, wing_block_rows;
+  std::string numbering; // the wing's iterations as meshed and numbered along a Morton curve
   if(wanted(setup, "naca_coarse")) {
     progress("building the coarse NACA0012 mesh");
     const auto c = naca_case(false, setup);
@@ -1380,6 +1459,7 @@ int main(int argc, char** argv)
       wing_block_rows.push_back(block_row(c, "torsional (3x3 blocks)", sm::Torsional_stiffness{}, first));
       wing_block_rows.push_back(block_row(c, "ball_vertex_p2 (3x3 blocks)", sm::Ball_vertex_stiffness{2.0}, first));
       wing_block_rows.push_back(block_row(c, "ball_vertex_p3 (3x3 blocks)", sm::Ball_vertex_stiffness{3.0}, first));
+      numbering = numbering_table(c);
     } catch(const std::exception& e) {
       Row r;
       r.name = "wing 3D";
@@ -1412,6 +1492,7 @@ int main(int argc, char** argv)
     print_block_rows("NACA0012 2D coarse (the paper's mesh)", block_rows);
   if(!wing_block_rows.empty())
     print_block_rows("wing 3D, the first steps of the run", wing_block_rows);
+  std::printf("%s", numbering.c_str());
   Cli_results cli;
 #ifdef SPRING_MOTION_BENCH_CLI
   if(wanted(setup, "cli")) {

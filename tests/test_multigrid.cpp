@@ -583,13 +583,13 @@ TEST_CASE("multigrid: the aggregates are chosen again only after a streak of slo
   // isolated slow solves (a warm start that guessed badly), even periodic ones
   CHECK(refresh_decisions({17, 6, 5, 5, 9, 5, 5, 9, 5, 5, 9, 5, 9, 9, 5}) == "...............");
   // slow means at least 3/2 of the fewest and at least 3 more: 7 is neither
-  // 8 nor 5 + 3 away from 5 ...
+  // 3/2 of 5 nor 5 + 3 ...
   CHECK(refresh_decisions({17, 5, 7, 7, 7, 7, 7}) == ".......");
   // ... 8 is both: the third 8 in a row triggers the rebuild, a fourth does
   // not count against the new aggregates, whose first solve is no reference
   CHECK(refresh_decisions({17, 5, 8, 8, 8, 8, 5, 5}) == "....R...");
-  // the wing numbered along a space-filling curve, as it ran with aggregates
-  // kept from the first step: the streak 8, 14, 14 triggers it
+  // the wing numbered along a Morton curve, shortened (its run's start, then the
+  // solves before its rebuild): the streak 8, 14, 14 triggers it
   CHECK(refresh_decisions({17, 10, 5, 6, 6, 7, 7, 5, 8, 5, 7, 5, 8, 7, 8, 14, 14, 5, 5}) ==
         "................R..");
   // with few iterations the margin of 3 decides: 2 -> 3 and 4 -> 6 are 3/2

@@ -42,8 +42,7 @@ namespace internal {
 /// W_b. Every level's matrix is the Galerkin product P^T A P of the level
 /// above, recomputed from the new values and positions at every `load`;
 /// the aggregates are chosen at `build` (when: Aggregation_refresh). The
-/// coarsest level is solved
-/// by a dense Cholesky factorisation.
+/// coarsest level is solved by a dense Cholesky factorisation.
 ///
 /// The result does not depend on the thread count: the Gauss-Seidel sweeps
 /// of the coarse levels run serially, and every other loop (the Galerkin

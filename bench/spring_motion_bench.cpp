@@ -656,14 +656,6 @@ Row measure(const Case<D>& c, const std::vector<double>& bandwidth)
   return row;
 }
 
-// ---- relaxation factor ------------------------------------------------------------------
-
-// The solver's parameters on the first three steps of a case's motion (one
-// thread): SOR (error-estimate rule, tolerance 1e-6) and conjugate gradients
-// with a symmetric-SOR(omega) preconditioner against the relaxation factor,
-// then the multigrid's strength and correction factor about their defaults:
-// iterations and solve time summed over the steps, and the largest true
-// error of a step's solve against SimplicialLDLT on its captured system.
 // The case with its vertices numbered along a Morton curve (by the code of
 // their position) and its elements by their smallest new vertex, as meshers
 // and converters that sort their output in space number a mesh. The
@@ -742,6 +734,14 @@ std::string numbering_table(const Case<D>& c)
   return out.str();
 }
 
+// ---- relaxation factor ------------------------------------------------------------------
+
+// The solver's parameters on the first three steps of a case's motion (one
+// thread): SOR (error-estimate rule, tolerance 1e-6) and conjugate gradients
+// with a symmetric-SOR(omega) preconditioner against the relaxation factor,
+// then the multigrid's strength and correction factor about their defaults:
+// iterations and solve time summed over the steps, and the largest true
+// error of a step's solve against SimplicialLDLT on its captured system.
 template <int D>
 void omega_table(const Case<D>& c)
 {

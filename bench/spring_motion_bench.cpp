@@ -13,7 +13,10 @@
 // --box N (cubes per side of the structured box; 100 gives ~1M nodes),
 // --repeats R (runs per case and thread count for the medians),
 // --omega-table (instead of the table: SOR sweeps and preconditioned CG
-// iterations against the relaxation factor on the 2D cases' systems).
+// iterations against the relaxation factor on the 2D cases' systems),
+// --every-step-error (the 2D cases' err columns over the systems of all their
+// steps, not steps 1, middle and last: what a change of the stopping rule
+// does to the error of every solve).
 // The case `cli` runs the `spring-motion` program on the 2D and wing meshes
 // written to Medit files: whole-process time, peak memory, and the wing with
 // two CPU-bound processes beside it (default threads against one thread).
@@ -35,6 +38,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <numeric>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -84,6 +88,7 @@ struct Setup
   std::size_t box = 100;
   int repeats = 5;
   bool omega_table = false;
+  bool every_step_error = false;
 };
 
 // STREAM-like triad a = b + s c over arrays far larger than the caches, best
@@ -301,6 +306,10 @@ Case<2> naca_case(bool fine, const Setup& setup)
   c.steps = c.of_steps = setup.quick ? 20 : 100;
   c.repeats = setup.quick ? 1 : (fine ? 3 : setup.repeats);
   c.capture_steps = {1, c.steps / 2, c.steps};
+  if(setup.every_step_error) {
+    c.capture_steps.resize(c.steps);
+    std::iota(c.capture_steps.begin(), c.capture_steps.end(), std::size_t(1));
+  }
   return c;
 }
 
@@ -1389,6 +1398,8 @@ Setup parse(int argc, char** argv)
       box_given = true;
     } else if(a == "--omega-table")
       s.omega_table = true;
+    else if(a == "--every-step-error")
+      s.every_step_error = true;
     else if(a == "--repeats")
       s.repeats = std::stoi(value());
     else if(a == "--cases") {
@@ -1398,7 +1409,7 @@ Setup parse(int argc, char** argv)
         s.cases.push_back(m);
     } else {
       std::cerr << "usage: spring_motion_bench [--quick] [--cases naca_coarse,naca_fine,wing,box,cli] [--box N]"
-                   " [--repeats R] [--omega-table]\n";
+                   " [--repeats R] [--omega-table] [--every-step-error]\n";
       std::exit(a == "--help" ? 0 : 2);
     }
   }
@@ -1422,6 +1433,8 @@ int main(int argc, char** argv)
   const std::vector<double> bandwidth = {triad_bandwidth(1, triad_n), triad_bandwidth(2, triad_n)};
   std::printf("SpringMotion benchmark%s. Triad bandwidth: %.2f GB/s (1 thread), %.2f GB/s (2 threads).\n",
               setup.quick ? " (--quick)" : "", bandwidth[0] * 1e-9, bandwidth[1] * 1e-9);
+  if(setup.every_step_error)
+    std::printf("err of the 2D cases: over the systems of every step (--every-step-error).\n");
   if(setup.omega_table) {
     if(wanted(setup, "naca_coarse"))
       omega_table(naca_case(false, setup));

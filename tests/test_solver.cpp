@@ -6,6 +6,7 @@
 #include <spring_motion/spring_motion.h>
 #include <spring_motion/internal/solver/assemble.h>
 #include <spring_motion/internal/solver/block_ops.h>
+#include <spring_motion/internal/solver/stopping_test.h>
 #include <spring_motion/internal/solver/warm_start.h>
 
 #include "test_meshes.h"
@@ -21,6 +22,8 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <initializer_list>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -421,6 +424,81 @@ TEST_CASE("solvers: the paper's max-change criterion stops far from the solution
   write_report_json(r.report, json);
   CHECK_THAT(json.str(), Catch::Contains("\"residual\": ") && Catch::Contains("\"error_estimate\": ") &&
                              Catch::Contains("\"max_update\": "));
+}
+
+TEST_CASE("solvers: the error estimate counts the tail by single iterations and by pairs, whichever is smaller",
+          "[solver]")
+{
+  // Changes u_k in units of `unit` against the default tolerance 1e-6: a
+  // solve may stop once the estimate is at most 5e-7. Each expected estimate
+  // is the tail of a geometric series worked out by hand: by single
+  // iterations u_k q / (1 - q), q the largest of the last four ratios
+  // (infinite before five changes); by pairs s_k Q / (1 - Q), s_k = u_k +
+  // u_{k-1}, Q the largest of the last four s_j / s_{j-2} and of the last
+  // ratio u_k / u_{k-1} (infinite before seven changes).
+  struct Feed
+  {
+    bool done;
+    double estimate;
+  };
+  auto feed = [](std::initializer_list<double> changes, double unit) {
+    internal::Stopping_test test{Solver_options{}};
+    std::vector<Feed> out;
+    for(double u : changes) {
+      const bool done = test.done(u * unit);
+      out.push_back({done, test.estimate()});
+    }
+    return out;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  SECTION("a steady contraction: the single iterations' tail, the smaller")
+  {
+    // q = 1/2. Five changes: by single iterations 0.5 (1/2) / (1/2) = 0.5;
+    // seven: 0.125 by single iterations, by pairs Q = max(1/4, 1/2) and
+    // s = 0.375, so 0.375
+    const auto f = feed({8, 4, 2, 1, 0.5, 0.25, 0.125}, 1e-7);
+    for(std::size_t k = 0; k < 4; ++k) {
+      CHECK_FALSE(f[k].done);
+      CHECK(f[k].estimate == inf);
+    }
+    CHECK(f[4].done);
+    CHECK(f[4].estimate == Approx(0.5e-7).epsilon(1e-12));
+    CHECK(f[6].estimate == Approx(0.125e-7).epsilon(1e-12));
+  }
+  SECTION("changes larger than the ones before: the pairs' tail")
+  {
+    // ratios 1/4, 2, 1/2, 3/5, 4/3, 1/8: by single iterations infinite; by
+    // pairs s = 25, 15, 15, 8, 7, 4.5 and s_j / s_{j-2} = 3/5, 8/15, 7/15,
+    // 9/16, with the last ratio 1/8: Q = 3/5, the oldest pair's, so
+    // 4.5 (3/5) / (2/5) = 6.75
+    const auto f = feed({20, 5, 10, 5, 3, 4, 0.5}, 1e-8);
+    for(std::size_t k = 0; k < 6; ++k) {
+      CHECK_FALSE(f[k].done);
+      CHECK(f[k].estimate == inf);
+    }
+    CHECK(f[6].done);
+    CHECK(f[6].estimate == Approx(6.75e-8).epsilon(1e-12));
+    // the same seven changes after three others: only the last seven count
+    // (before, a ratio or a pair ratio above 1 in each window keeps both
+    // estimates infinite)
+    const auto g = feed({1, 1, 1, 20, 5, 10, 5, 3, 4, 0.5}, 1e-8);
+    for(std::size_t k = 0; k < 9; ++k) {
+      CHECK_FALSE(g[k].done);
+      CHECK(g[k].estimate == inf);
+    }
+    CHECK(g[9].done);
+    CHECK(g[9].estimate == Approx(6.75e-8).epsilon(1e-12));
+  }
+  SECTION("a slower last iteration is not averaged away by its pair")
+  {
+    // ratios 1/4, 2, 1/4, 1/2, 1/2, 0.9: by single iterations 0.45 * 9 =
+    // 4.05 (in units 2e-7: 8.1e-7, above 5e-7); by pairs s = 20, 12, 10, 3,
+    // 1.5, 0.95 contract by at most 1/2, but the last ratio 0.9 is in Q:
+    // 0.95 * 9 = 8.55. The smaller, 8.1e-7, does not stop the solve.
+    const auto f = feed({16, 4, 8, 2, 1, 0.5, 0.45}, 2e-7);
+    CHECK_FALSE(f[6].done);
+    CHECK(f[6].estimate == Approx(8.1e-7).epsilon(1e-12));
+  }
 }
 
 TEST_CASE("solvers: an iteration cap stops a solve unconverged, and every report says so", "[solver][errors]")

@@ -450,17 +450,20 @@ TEST_CASE("solvers: the error estimate counts the tail by single iterations and 
     }
     return out;
   };
-  const double inf = std::numeric_limits<double>::infinity();
+  // the first n feeds: no estimate yet, no stop
+  auto undecided = [](const std::vector<Feed>& f, std::size_t n) {
+    for(std::size_t k = 0; k < n; ++k) {
+      CHECK_FALSE(f[k].done);
+      CHECK(f[k].estimate == std::numeric_limits<double>::infinity());
+    }
+  };
   SECTION("a steady contraction: the single iterations' tail, the smaller")
   {
     // q = 1/2. Five changes: by single iterations 0.5 (1/2) / (1/2) = 0.5;
     // seven: 0.125 by single iterations, by pairs Q = max(1/4, 1/2) and
     // s = 0.375, so 0.375
     const auto f = feed({8, 4, 2, 1, 0.5, 0.25, 0.125}, 1e-7);
-    for(std::size_t k = 0; k < 4; ++k) {
-      CHECK_FALSE(f[k].done);
-      CHECK(f[k].estimate == inf);
-    }
+    undecided(f, 4);
     CHECK(f[4].done);
     CHECK(f[4].estimate == Approx(0.5e-7).epsilon(1e-12));
     CHECK(f[6].estimate == Approx(0.125e-7).epsilon(1e-12));
@@ -472,20 +475,14 @@ TEST_CASE("solvers: the error estimate counts the tail by single iterations and 
     // 9/16, with the last ratio 1/8: Q = 3/5, the oldest pair's, so
     // 4.5 (3/5) / (2/5) = 6.75
     const auto f = feed({20, 5, 10, 5, 3, 4, 0.5}, 1e-8);
-    for(std::size_t k = 0; k < 6; ++k) {
-      CHECK_FALSE(f[k].done);
-      CHECK(f[k].estimate == inf);
-    }
+    undecided(f, 6);
     CHECK(f[6].done);
     CHECK(f[6].estimate == Approx(6.75e-8).epsilon(1e-12));
     // the same seven changes after three others: only the last seven count
     // (before, a ratio or a pair ratio above 1 in each window keeps both
     // estimates infinite)
     const auto g = feed({1, 1, 1, 20, 5, 10, 5, 3, 4, 0.5}, 1e-8);
-    for(std::size_t k = 0; k < 9; ++k) {
-      CHECK_FALSE(g[k].done);
-      CHECK(g[k].estimate == inf);
-    }
+    undecided(g, 9);
     CHECK(g[9].done);
     CHECK(g[9].estimate == Approx(6.75e-8).epsilon(1e-12));
   }

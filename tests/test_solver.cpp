@@ -430,12 +430,14 @@ TEST_CASE("solvers: the error estimate counts the tail by single iterations and 
           "[solver]")
 {
   // Changes u_k in units of `unit` against the default tolerance 1e-6: a
-  // solve may stop once the estimate is at most 5e-7. Each expected estimate
-  // is the tail of a geometric series worked out by hand: by single
-  // iterations u_k q / (1 - q), q the largest of the last four ratios
-  // (infinite before five changes); by pairs s_k Q / (1 - Q), s_k = u_k +
-  // u_{k-1}, Q the largest of the last four s_j / s_{j-2} and of the last
-  // ratio u_k / u_{k-1} (infinite before seven changes).
+  // solve may stop once the estimate is at most 5e-7 (before five changes:
+  // 6.25e-8, with the change at most 1.25e-7). Each expected estimate is the
+  // tail of a geometric series worked out by hand: by single iterations u_k
+  // q / (1 - q), q the largest of the last four ratios (before five changes:
+  // of the ratios so far; infinite before three changes); by pairs s_k Q /
+  // (1 - Q), s_k = u_k + u_{k-1}, Q the largest of the last four s_j /
+  // s_{j-2} and of the last ratio u_k / u_{k-1} (infinite before seven
+  // changes).
   struct Feed
   {
     bool done;
@@ -450,11 +452,12 @@ TEST_CASE("solvers: the error estimate counts the tail by single iterations and 
     }
     return out;
   };
-  // the first n feeds: no estimate yet, no stop
+  // the first n feeds do not stop the solve; the first two give no estimate
   auto undecided = [](const std::vector<Feed>& f, std::size_t n) {
     for(std::size_t k = 0; k < n; ++k) {
       CHECK_FALSE(f[k].done);
-      CHECK(f[k].estimate == std::numeric_limits<double>::infinity());
+      if(k < 2)
+        CHECK(f[k].estimate == std::numeric_limits<double>::infinity());
     }
   };
   SECTION("a steady contraction: the single iterations' tail, the smaller")
@@ -464,6 +467,9 @@ TEST_CASE("solvers: the error estimate counts the tail by single iterations and 
     // s = 0.375, so 0.375
     const auto f = feed({8, 4, 2, 1, 0.5, 0.25, 0.125}, 1e-7);
     undecided(f, 4);
+    // before five changes: 2 (1/2) / (1/2) = 2, then 1, above 0.625
+    CHECK(f[2].estimate == Approx(2e-7).epsilon(1e-12));
+    CHECK(f[3].estimate == Approx(1e-7).epsilon(1e-12));
     CHECK(f[4].done);
     CHECK(f[4].estimate == Approx(0.5e-7).epsilon(1e-12));
     CHECK(f[6].estimate == Approx(0.125e-7).epsilon(1e-12));
@@ -495,6 +501,30 @@ TEST_CASE("solvers: the error estimate counts the tail by single iterations and 
     const auto f = feed({16, 4, 8, 2, 1, 0.5, 0.45}, 2e-7);
     CHECK_FALSE(f[6].done);
     CHECK(f[6].estimate == Approx(8.1e-7).epsilon(1e-12));
+  }
+  SECTION("before five changes, a solve stops only far below the tolerance")
+  {
+    // ratios 1/8, 1/2: u = 0.5 <= 1.25 and 0.5 (1/2) / (1/2) = 0.5 <= 0.625
+    const auto f = feed({8, 1, 0.5}, 1e-7);
+    undecided(f, 2);
+    CHECK(f[2].done);
+    CHECK(f[2].estimate == Approx(0.5e-7).epsilon(1e-12));
+    // the estimate passes (ratios 0.13, 0.1: 1.3 (0.13) / 0.87) but the
+    // change 1.3 is above 1.25; the next, 0.26 (q = 0.2: 0.065), stops it
+    const auto g = feed({100, 13, 1.3, 0.26}, 1e-7);
+    undecided(g, 3);
+    CHECK(g[2].estimate == Approx(1.3e-7 * 0.13 / 0.87).epsilon(1e-12));
+    CHECK(g[3].done);
+    CHECK(g[3].estimate == Approx(0.065e-7).epsilon(1e-12));
+    // the change passes but the estimate, 1 (1/2) / (1/2) = 1, is above 0.625
+    const auto h = feed({4, 2, 1}, 1e-7);
+    undecided(h, 3);
+    CHECK(h[2].estimate == Approx(1e-7).epsilon(1e-12));
+    // one change larger than the one before (ratio 1.25) counts until the
+    // window is full: no early stop, however small the changes after it
+    const auto k = feed({8, 0.4, 0.5, 0.05}, 1e-7);
+    undecided(k, 4);
+    CHECK(k[3].estimate == std::numeric_limits<double>::infinity());
   }
 }
 

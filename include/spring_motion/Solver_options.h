@@ -58,7 +58,8 @@ enum class Stopping_rule
   /// (and the last change at most the tolerance): the last change u_k times
   /// q / (1 - q), q the largest ratio of successive changes over the last
   /// four iterations, or the same tail counted by pairs of iterations if
-  /// smaller. The default; docs/method.md ("Solver") says why.
+  /// smaller; before five iterations, with margins 8 times stricter, from
+  /// the ratios so far. The default; docs/method.md ("Solver") says why.
   error_estimate,
   /// the paper's Eq. 12: when no component changed by more than the
   /// tolerance in the last iteration. This is not the error: a slowly

@@ -45,11 +45,11 @@ inline bool residual_at_rounding_level(double residual, double x_max)
 /// mean and the margin costs a few sweeps.
 ///
 /// The same tail counted by pairs of iterations: conjugate gradients'
-/// changes often alternate, a change larger than the one before (ratio 1.2
-/// to 3) after a much smaller one (0.1 to 0.2), while every two iterations
-/// together shrink steadily. One such ratio above 1 keeps the estimate
-/// infinite for `window` more iterations, and again at the next one: such
-/// solves ran several iterations past the point their changes showed. With s_k = u_k +
+/// changes often alternate, a change larger than the one before after a
+/// much smaller one, while every two iterations together shrink steadily.
+/// One such ratio above 1 keeps the estimate infinite for `window` more
+/// iterations, and again at the next one: such solves ran several iterations
+/// after their changes had shrunk far below the tolerance. With s_k = u_k +
 /// u_{k-1} and Q the largest of the last `window` pair ratios s_j / s_{j-2}
 /// and of the last ratio u_k / u_{k-1}, the tail s_{k+2} + s_{k+4} + ... is
 /// estimated as s_k Q / (1 - Q), infinite before window + 3 iterations; the
@@ -72,8 +72,8 @@ inline bool residual_at_rounding_level(double residual, double x_max)
 /// the wing's grid-scaled run took five iterations and ended far below the
 /// tolerance against a direct solve. The margins, 8 times stricter than the
 /// full window's, stand in for the ratios not yet seen: after a latest change
-/// of tolerance / 8, a next change 3 times larger (as conjugate gradients'
-/// alternating changes show) and a tail halving from there add 3/4 of the
+/// of tolerance / 8, even a next change 3 times larger (conjugate gradients'
+/// changes can alternate) and a tail halving from there add only 3/4 of the
 /// tolerance. SOR, whose ratios are close to 1, never stops early.
 ///
 /// Rule `max_update` (the paper's Eq. 12): stop when u_k <= tolerance; the

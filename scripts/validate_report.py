@@ -78,6 +78,10 @@ def validate(path):
     for k in ("max_iterations", "threads", "block_rows", "multigrid_coarsest_rows", "multigrid_max_direct_rows"):
         if not isinstance(so.get(k), int) or isinstance(so.get(k), bool) or so[k] < 0:
             fail(path, f"solver.{k} should be a non-negative integer")
+    # added within version 1: absent from older reports
+    k = "multigrid_coarse_interval"
+    if k in so and (not isinstance(so[k], int) or isinstance(so[k], bool) or so[k] < 1):
+        fail(path, f"solver.{k} should be an integer >= 1")
     for k in ("warm_start", "extrapolate"):
         if not isinstance(so.get(k), bool):
             fail(path, f"solver.{k} should be a boolean")

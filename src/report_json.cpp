@@ -76,6 +76,7 @@ Json solver(const Solver_options& o)
   s["multigrid_correction"] = number(o.multigrid_correction);
   s["multigrid_coarsest_rows"] = o.multigrid_coarsest_rows;
   s["multigrid_max_direct_rows"] = o.multigrid_max_direct_rows;
+  s["multigrid_coarse_interval"] = o.multigrid_coarse_interval;
   return s;
 }
 

@@ -800,6 +800,116 @@ TEST_CASE("solvers: the preconditioner is the symmetric Gauss-Seidel of the solv
 
 }
 
+// A block system's multigrid keeps its coarse levels for
+// multigrid_coarse_interval solves: a sequence of systems, each on a mesh
+// deformed a little further (so that each matrix differs from the last), is
+// solved with the levels recomputed at solves 1, 5, 9 (interval 4) or at every
+// solve (interval 1). Every solution must equal a direct solve of its own
+// loaded system: kept coarse levels only change the preconditioner. The count
+// of recomputations shows the levels were kept; the solutions do not depend
+// on the thread count.
+TEST_CASE("solvers: a block system's multigrid keeps its coarse levels between recomputations, and the solutions "
+          "stay those of a direct solve",
+          "[solver][block][multigrid]")
+{
+  CDT cdt;
+  make_annulus(cdt);
+  const auto net = extract_spring_network(cdt).network;
+  const auto roles = assign_roles(net, moving_boundary_where([](const P2& p) { return std::hypot(p[0], p[1]) < 1.0; }));
+  std::vector<Index> free;
+  for(Index i = 0; i < Index(net.number_of_vertices()); ++i)
+    if(roles[i] == Vertex_role::free)
+      free.push_back(i);
+  REQUIRE(free.size() > 100);
+  const std::vector<double> k(net.number_of_edges(), 0.0); // ball-vertex springs alone
+  const std::size_t solves = 9;
+
+  // the solutions of the `solves` systems under the options
+  auto run = [&](const Solver_options& o, std::vector<std::size_t>& loads, std::vector<double>& errors) {
+    internal::Free_system<2> fs;
+    fs.build(net, free, true, o);
+    std::vector<P2> positions = net.points;
+    fs.set_positions(positions);
+    std::vector<std::vector<P2>> solutions;
+    for(std::size_t s = 1; s <= solves; ++s) {
+      // a smooth shear growing with s (at most 1% of the annulus), and a
+      // turn of the inner boundary as the prescribed increment
+      const double a = 0.002 * double(s);
+      std::vector<P2> increment(net.number_of_vertices(), P2{0, 0});
+      for(std::size_t i = 0; i < positions.size(); ++i) {
+        const P2& p = net.points[i];
+        positions[i] = {p[0] + a * std::sin(p[1]), p[1] + a * std::sin(2 * p[0])};
+        if(roles[i] == Vertex_role::moving)
+          increment[i] = {-0.01 * p[1], 0.01 * p[0]};
+      }
+      internal::assemble_block_system<2>(positions, Ball_vertex_stiffness{2.0}, k, fs, o.threads);
+      fs.set_start(increment, o.threads);
+      const Solve_report r = fs.solve(o);
+      CHECK(r.converged);
+      loads.push_back(fs.rigid_body_multigrid().loads());
+      // the loaded system, assembled into Eigen and solved directly
+      const std::size_t n = fs.rows();
+      const Index* off = fs.row_offsets().data();
+      const Index* col = fs.columns().data();
+      std::vector<Eigen::Triplet<double>> trip;
+      for(std::size_t row = 0; row < n; ++row)
+        for(int c = 0; c < 2; ++c)
+          for(int d = 0; d < 2; ++d) {
+            trip.emplace_back(int(2 * row) + c, int(2 * row) + d, fs.diagonal()[row * 4 + std::size_t(2 * c + d)]);
+            for(Index q = off[row]; q < off[row + 1]; ++q)
+              trip.emplace_back(int(2 * row) + c, int(2 * col[q]) + d, fs.values()[q * 4 + std::size_t(2 * c + d)]);
+          }
+      Eigen::SparseMatrix<double> A(int(2 * n), int(2 * n));
+      A.setFromTriplets(trip.begin(), trip.end());
+      Eigen::VectorXd b(2 * n);
+      for(std::size_t row = 0; row < n; ++row)
+        for(int c = 0; c < 2; ++c)
+          b(int(2 * row) + c) = fs.rhs()[row][std::size_t(c)];
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
+      REQUIRE(ldlt.info() == Eigen::Success);
+      const Eigen::VectorXd x = ldlt.solve(b);
+      REQUIRE((A * x - b).norm() <= 1e-12 * b.norm());
+      double error = 0, largest = 0;
+      for(std::size_t row = 0; row < n; ++row)
+        for(int c = 0; c < 2; ++c) {
+          error = std::max(error, std::abs(fs.solution()[row][std::size_t(c)] - x(int(2 * row) + c)));
+          largest = std::max(largest, std::abs(x(int(2 * row) + c)));
+        }
+      CHECK(largest > 1e-3); // the increment is not trivially zero
+      errors.push_back(error);
+      solutions.push_back(fs.solution());
+    }
+    return solutions;
+  };
+  Solver_options o;
+  o.tolerance = 1e-9;
+  o.block_rows = 16;
+  std::vector<std::size_t> loads1, loads4, loads4_two;
+  std::vector<double> errors1, errors4, errors4_two;
+  o.threads = 1;
+  o.multigrid_coarse_interval = 1;
+  run(o, loads1, errors1);
+  o.multigrid_coarse_interval = 4;
+  const auto one_thread = run(o, loads4, errors4);
+  o.threads = 2;
+  const auto two_threads = run(o, loads4_two, errors4_two);
+  for(std::size_t s = 0; s < solves; ++s) {
+    INFO("solve " << s + 1 << ": error " << errors1[s] << " (every solve), " << errors4[s] << " (every 4th)");
+    CHECK(loads1[s] == s + 1);
+    CHECK(loads4[s] == 1 + s / 4);
+    CHECK(errors1[s] <= 10 * o.tolerance);
+    CHECK(errors4[s] <= 10 * o.tolerance);
+    CHECK(loads4_two[s] == loads4[s]);
+    CHECK(errors4_two[s] == errors4[s]);
+    CHECK(std::memcmp(one_thread[s].data(), two_threads[s].data(), one_thread[s].size() * sizeof(P2)) == 0);
+  }
+  // an interval of 0 would never recompute them: it is refused
+  o.multigrid_coarse_interval = 0;
+  std::vector<std::size_t> none_loads;
+  std::vector<double> none_errors;
+  CHECK_THROWS_WITH(run(o, none_loads, none_errors), Catch::Contains("multigrid coarse interval must be at least 1"));
+}
+
 // The preconditioner's sweeps (in single precision) and conjugate gradients'
 // products (in double) read a symmetric block from its upper triangle (6 of 9
 // values in 3D): the product must be that of the full block, bit for bit, so

@@ -113,6 +113,17 @@ struct Solver_options
   /// many vertices (coarsening can stall above it: then a symmetric
   /// Gauss-Seidel sweep smooths it instead).
   std::size_t multigrid_max_direct_rows = 256;
+  /// Block systems (element models): their multigrid's coarse levels (the
+  /// Galerkin products of every level and the coarsest factorisation) are
+  /// recomputed at the first solve and then at every this-many-th solve,
+  /// and kept in between; 1: at every solve. Must be at least 1. The fine
+  /// level always reads the current system, and a kept coarse level is still
+  /// symmetric positive definite, so conjugate gradients converge to the same
+  /// solution; only the preconditioner is a little further from the current
+  /// matrix; the iterations stay about the same (docs/performance.md, "Coarse
+  /// levels kept"). Scalar systems recompute theirs at every solve: their
+  /// sums of spring weights cost little.
+  std::size_t multigrid_coarse_interval = 4;
   /// OpenMP threads for stiffness, solve, checks and quality. 0: step by
   /// step OpenMP's default team or one thread, whichever measures cheaper
   /// (on a machine whose cores other processes use, the team's barriers wait

@@ -151,6 +151,7 @@ public:
     rigid_ = Rigid_body_multigrid<D>();
     rigid_.parameters = multigrid_.parameters;
     refresh_ = Aggregation_refresh();
+    kept_solves_ = 0;
     const std::size_t n = net.number_of_vertices();
     const std::size_t nf = free_vertices.size();
     std::vector<Index> row_of(n, none);
@@ -457,9 +458,9 @@ public:
     z_.resize(r.size());
     if(block_) {
       prepare_block_copies(options.threads);
-      apply_preconditioner<true>(load_preconditioner<true>(options), options);
+      apply_preconditioner<true>(load_preconditioner<true>(options, false), options);
     } else
-      apply_preconditioner<false>(load_preconditioner<false>(options), options);
+      apply_preconditioner<false>(load_preconditioner<false>(options, false), options);
     return z_;
   }
 
@@ -469,8 +470,8 @@ public:
   const Rigid_body_multigrid<D>& rigid_body_multigrid() const { return rigid_; }
 
   /// The positions of the network's vertices, whose rigid motions a block
-  /// system's multigrid builds its coarse levels from; read at every solve,
-  /// so they must outlive the solver's use.
+  /// system's multigrid builds its coarse levels from; read at the solves
+  /// that compute those levels, so they must outlive the solver's use.
   void set_positions(const std::vector<Row>& positions) { positions_ = &positions; }
 
 private:
@@ -853,7 +854,7 @@ private:
     Stopping_test stop(options);
     Preconditioner_state pc;
     if(r_max > 0 && nf > 0)
-      pc = load_preconditioner<B>(options);
+      pc = load_preconditioner<B>(options, true);
     auto precondition = [&] { apply_preconditioner<B>(pc, options); };
     if(r_max > 0 && nf > 0) {
       precondition();
@@ -904,9 +905,11 @@ private:
     bool cycle = false, single = false;
   };
 
-  // Loads the preconditioner `options` select for the loaded system.
+  // Loads the preconditioner `options` select for the loaded system; a
+  // block system's coarse levels are kept from an earlier solve when `keep`
+  // and options.multigrid_coarse_interval allow.
   template <bool B>
-  Preconditioner_state load_preconditioner(const Solver_options& options)
+  Preconditioner_state load_preconditioner(const Solver_options& options, bool keep)
   {
     const bool mg = options.preconditioner == Preconditioner::multigrid;
     multigrid_.parameters.correction = options.multigrid_correction; // used per cycle only
@@ -916,14 +919,21 @@ private:
       if constexpr(B) {
         SPRING_MOTION_CHECK(positions_ && positions_->size() > *std::max_element(order_.begin(), order_.end()),
                             "the block system's multigrid needs the vertices' positions (set_positions)");
-        row_points_.resize(order_.size());
-        for(std::size_t r = 0; r < order_.size(); ++r)
-          row_points_[r] = (*positions_)[order_[r]];
-        if(!rigid_.built() || refresh_.due()) {
-          rigid_.build(fine, row_points_.data(), options.threads);
-          refresh_.rebuilt();
+        // solves counted since the levels were last computed: the count, not
+        // the thread count or a timing, decides, so the results stay the same
+        // for any thread count
+        const bool choose = !rigid_.built() || refresh_.due();
+        if(choose || !keep || ++kept_solves_ >= options.multigrid_coarse_interval) {
+          row_points_.resize(order_.size());
+          for(std::size_t r = 0; r < order_.size(); ++r)
+            row_points_[r] = (*positions_)[order_[r]];
+          if(choose) {
+            rigid_.build(fine, row_points_.data(), options.threads);
+            refresh_.rebuilt();
+          }
+          rigid_.load(fine, row_points_.data(), options.threads);
+          kept_solves_ = 0;
         }
-        rigid_.load(fine, row_points_.data(), options.threads);
       } else {
         if(!multigrid_.built() || refresh_.due()) {
           multigrid_.build(fine, options.threads);
@@ -1241,6 +1251,7 @@ private:
   Aggregation_multigrid<D> multigrid_;
   Rigid_body_multigrid<D> rigid_;
   Aggregation_refresh refresh_; // when the multigrid's aggregates are chosen again
+  std::size_t kept_solves_ = 0;  // solves since a block system's coarse levels were computed
   const std::vector<Row>* positions_ = nullptr;
   std::vector<Row> row_points_;
 };

@@ -65,6 +65,8 @@ public:
   bool built() const { return built_; }
   std::size_t number_of_levels() const { return levels_.size(); }
   std::size_t rows(std::size_t level) const { return levels_[level].n; }
+  /// how many times `load` has recomputed the levels
+  std::size_t loads() const { return loads_; }
 
   /// Chooses the aggregates of every level from the fine block matrix and
   /// the positions of its rows.
@@ -123,6 +125,7 @@ public:
   /// in `build`) and the positions of its rows, and factors the coarsest.
   void load(const Csr_view& fine, const Row* points, int threads = 1)
   {
+    ++loads_;
     for(std::size_t l = 0; l < levels_.size(); ++l)
       load_level(l, fine, points, threads);
     factor_coarsest();
@@ -509,6 +512,7 @@ private:
   std::vector<Level> levels_;
   std::vector<double> chol_;
   bool built_ = false;
+  std::size_t loads_ = 0;
 };
 
 } // namespace internal

@@ -171,6 +171,8 @@ inline void check_options(const Solver_options& o)
                       "multigrid strength must be finite and >= 0, got " << o.multigrid_strength);
   SPRING_MOTION_CHECK(o.multigrid_correction > 0 && o.multigrid_correction < 2,
                       "multigrid correction factor must lie in (0, 2), got " << o.multigrid_correction);
+  SPRING_MOTION_CHECK(o.multigrid_coarse_interval >= 1,
+                      "multigrid coarse interval must be at least 1 (solves), got " << o.multigrid_coarse_interval);
 }
 
 } // namespace internal

@@ -11,7 +11,8 @@
 //
 // Options: --quick, --cases a,b,... (naca_coarse, naca_fine, wing, box, cli),
 // --box N (cubes per side of the structured box; 100 gives ~1M nodes),
-// --repeats R (runs per case and thread count for the medians),
+// --repeats R (runs per case and thread count for the medians; rounds of
+// the block-vs-scalar tables, at most 3 on the wing),
 // --omega-table (instead of the table: SOR sweeps and preconditioned CG
 // iterations against the relaxation factor on the 2D cases' systems),
 // --every-step-error (the 2D cases' err columns over the systems of all their
@@ -870,39 +871,64 @@ struct Block_row
   double stiffness_ms = 0;  // per step, median (assembly included)
   double ms_per_iteration = 0;
   double error = -1;        // max |ours - LDLT| on the captured systems; -1: not computed
+  // every step's times, over all rounds
+  std::vector<double> solve, stiffness;
+  std::size_t iterations_total = 0;
 };
 
-// `steps`: only the first steps of the case's schedule, and no comparison
-// with a direct solve (the wing's block systems are too large for one)
+// One run of `model` added to row b: its steps' times, and in the first
+// round the iterations and (`steps` 0: the whole motion) the error on the
+// captured systems. `steps`: only the first steps of the case's schedule,
+// and no comparison with a direct solve (the wing's block systems are too
+// large for one).
 template <int D, class Model>
-Block_row block_row(const Case<D>& c, const std::string& name, const Model& model, std::size_t steps = 0)
+void add_block_run(const Case<D>& c, const Model& model, std::size_t steps, bool first_round, Block_row& b)
 {
-  progress(c.name + ": " + name + " (1 thread)");
-  Block_row b;
-  b.model = name;
+  progress(c.name + ": " + b.model + " (1 thread)");
   std::vector<Captured_system<D>> caps;
   sm::Solver_options o;
   o.threads = 1;
-  const auto rep = run_once(c, o, steps ? nullptr : &caps, model, steps);
-  std::vector<double> solve, stiff;
-  std::size_t its = 0;
+  const auto rep = run_once(c, o, steps || !first_round ? nullptr : &caps, model, steps);
   for(const auto& s : rep.steps) {
-    solve.push_back(s.seconds_solve);
-    stiff.push_back(s.seconds_stiffness);
-    its += s.iterations;
+    b.solve.push_back(s.seconds_solve);
+    b.stiffness.push_back(s.seconds_stiffness);
+    b.iterations_total += s.iterations;
   }
+  if(!first_round)
+    return;
   b.steps = rep.steps.size();
-  b.iterations = double(its) / double(std::max<std::size_t>(1, b.steps));
-  b.solve_ms = 1e3 * median(solve);
-  b.stiffness_ms = 1e3 * median(stiff);
-  double total_solve = 0;
-  for(double t : solve)
-    total_solve += t;
-  b.ms_per_iteration = 1e3 * total_solve / double(std::max<std::size_t>(1, its));
   for(const auto& cap : caps)
     b.error = std::max(b.error, max_difference<D>(as_matrix<D>(cap.solution),
                                                   reference_solution<D>(cap, to_eigen<D>(cap), true)));
-  return b;
+}
+
+// The block table's rows, one per model, measured in `rounds` rounds that
+// each run every model once, in turn: a slow spell of a shared machine then
+// falls on all models alike instead of on the one that ran during it, and
+// the ratios between rows (the cost targets) compare like with like. Times:
+// medians over the steps of all rounds.
+template <int D, class... Models>
+std::vector<Block_row> block_rows_alternated(const Case<D>& c, std::size_t steps, int rounds,
+                                             const std::vector<std::string>& names, const Models&... models)
+{
+  std::vector<Block_row> rows(sizeof...(Models));
+  for(std::size_t k = 0; k < rows.size(); ++k)
+    rows[k].model = names[k];
+  for(int r = 0; r < rounds; ++r) {
+    std::size_t k = 0;
+    (add_block_run(c, models, steps, r == 0, rows[k++]), ...);
+  }
+  for(auto& b : rows) {
+    const std::size_t samples = std::max<std::size_t>(1, b.solve.size());
+    b.iterations = double(b.iterations_total) / double(samples);
+    b.solve_ms = 1e3 * median(b.solve);
+    b.stiffness_ms = 1e3 * median(b.stiffness);
+    double total_solve = 0;
+    for(double t : b.solve)
+      total_solve += t;
+    b.ms_per_iteration = 1e3 * total_solve / double(std::max<std::size_t>(1, b.iterations_total));
+  }
+  return rows;
 }
 
 // time per step (stiffness + solve, medians) of row k over row 0's
@@ -911,11 +937,12 @@ double step_ratio(const std::vector<Block_row>& rows, std::size_t k)
   return (rows[k].solve_ms + rows[k].stiffness_ms) / (rows[0].solve_ms + rows[0].stiffness_ms);
 }
 
-void print_block_rows(const std::string& mesh, const std::vector<Block_row>& rows)
+void print_block_rows(const std::string& mesh, const std::vector<Block_row>& rows, int rounds)
 {
-  std::printf("\nBlock vs scalar systems, %s, 1 thread, default solver (err: max |ours - LDLT| on the captured "
-              "systems):\n%-28s %6s %8s %10s %10s %12s %9s\n",
-              mesh.c_str(), "model", "steps", "it/step", "solve ms", "stiff ms", "ms/iteration", "err");
+  std::printf("\nBlock vs scalar systems, %s, 1 thread, default solver; ms: medians over the steps of %d "
+              "rounds, each running every model in turn (err: max |ours - LDLT| on the captured systems):\n"
+              "%-28s %6s %8s %10s %10s %12s %9s\n",
+              mesh.c_str(), rounds, "model", "steps", "it/step", "solve ms", "stiff ms", "ms/iteration", "err");
   for(const auto& r : rows) {
     char err[16] = "n/a";
     if(r.error >= 0)
@@ -1444,17 +1471,20 @@ int main(int argc, char** argv)
   }
   std::vector<Row> rows;
   std::vector<Block_row> block_rows, wing_block_rows;
+  // rounds of the block tables (the wing's cost about 25 s each)
+  const int block_rounds = setup.quick ? 1 : setup.repeats;
+  const int wing_block_rounds = setup.quick ? 1 : std::min(setup.repeats, 3);
   std::string numbering; // the wing's iterations as meshed and numbered along a Morton curve
   if(wanted(setup, "naca_coarse")) {
     progress("building the coarse NACA0012 mesh");
     const auto c = naca_case(false, setup);
     rows.push_back(measure(c, bandwidth));
-    block_rows.push_back(block_row(c, "grid-scaled (scalar)", sm::Grid_scaled_stiffness{}));
-    block_rows.push_back(block_row(c, "torsional (2x2 blocks)", sm::Torsional_stiffness{}));
-    block_rows.push_back(block_row(c, "ball_vertex (2x2 blocks)", sm::Ball_vertex_stiffness{}));
-    block_rows.push_back(block_row(c, "ball_vertex_p2 (2x2 blocks)", sm::Ball_vertex_stiffness{2.0}));
-    block_rows.push_back(block_row(c, "ball_vertex_p3 (2x2 blocks)", sm::Ball_vertex_stiffness{3.0}));
-    block_rows.push_back(block_row(c, "grid_scaled+ball_vertex", sm::With_ball_vertex<sm::Grid_scaled_stiffness>{}));
+    block_rows = block_rows_alternated(
+        c, 0, block_rounds,
+        {"grid-scaled (scalar)", "torsional (2x2 blocks)", "ball_vertex (2x2 blocks)", "ball_vertex_p2 (2x2 blocks)",
+         "ball_vertex_p3 (2x2 blocks)", "grid_scaled+ball_vertex"},
+        sm::Grid_scaled_stiffness{}, sm::Torsional_stiffness{}, sm::Ball_vertex_stiffness{},
+        sm::Ball_vertex_stiffness{2.0}, sm::Ball_vertex_stiffness{3.0}, sm::With_ball_vertex<sm::Grid_scaled_stiffness>{});
   }
   if(wanted(setup, "naca_fine")) {
     progress("building the fine NACA0012 mesh");
@@ -1468,10 +1498,11 @@ int main(int argc, char** argv)
       rows.push_back(measure(c, bandwidth));
       // the robust models' cost on the same mesh: the first steps of the run
       const std::size_t first = setup.quick ? 3 : 10;
-      wing_block_rows.push_back(block_row(c, "grid-scaled (scalar)", sm::Grid_scaled_stiffness{}, first));
-      wing_block_rows.push_back(block_row(c, "torsional (3x3 blocks)", sm::Torsional_stiffness{}, first));
-      wing_block_rows.push_back(block_row(c, "ball_vertex_p2 (3x3 blocks)", sm::Ball_vertex_stiffness{2.0}, first));
-      wing_block_rows.push_back(block_row(c, "ball_vertex_p3 (3x3 blocks)", sm::Ball_vertex_stiffness{3.0}, first));
+      wing_block_rows = block_rows_alternated(c, first, wing_block_rounds,
+                                              {"grid-scaled (scalar)", "torsional (3x3 blocks)",
+                                               "ball_vertex_p2 (3x3 blocks)", "ball_vertex_p3 (3x3 blocks)"},
+                                              sm::Grid_scaled_stiffness{}, sm::Torsional_stiffness{},
+                                              sm::Ball_vertex_stiffness{2.0}, sm::Ball_vertex_stiffness{3.0});
       numbering = numbering_table(c);
     } catch(const std::exception& e) {
       Row r;
@@ -1502,9 +1533,9 @@ int main(int argc, char** argv)
   }
   print_table(rows);
   if(!block_rows.empty())
-    print_block_rows("NACA0012 2D coarse (the paper's mesh)", block_rows);
+    print_block_rows("NACA0012 2D coarse (the paper's mesh)", block_rows, block_rounds);
   if(!wing_block_rows.empty())
-    print_block_rows("wing 3D, the first steps of the run", wing_block_rows);
+    print_block_rows("wing 3D, the first steps of the run", wing_block_rows, wing_block_rounds);
   std::printf("%s", numbering.c_str());
   Cli_results cli;
 #ifdef SPRING_MOTION_BENCH_CLI

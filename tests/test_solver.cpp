@@ -682,6 +682,30 @@ TEMPLATE_TEST_CASE_SIG("solvers: a single free vertex converges in one conjugate
   CHECK(mesh.points[centre][1] == Approx(centre_of_rotation[1] + std::sin(a) * x + std::cos(a) * y).margin(1e-12));
 }
 
+namespace {
+// An annulus (Mesh_2) whose inner boundary moves: its network, the roles and
+// the free vertices.
+struct Annulus
+{
+  Spring_network<2> net;
+  std::vector<Vertex_role> roles;
+  std::vector<Index> free;
+};
+
+Annulus annulus()
+{
+  CDT cdt;
+  make_annulus(cdt);
+  Annulus a;
+  a.net = extract_spring_network(cdt).network;
+  a.roles = assign_roles(a.net, moving_boundary_where([](const P2& p) { return std::hypot(p[0], p[1]) < 1.0; }));
+  for(Index i = 0; i < Index(a.net.number_of_vertices()); ++i)
+    if(a.roles[i] == Vertex_role::free)
+      a.free.push_back(i);
+  return a;
+}
+} // namespace
+
 // The conjugate-gradient solves' preconditioner on the system it is built
 // for, against its definition. Symmetric Gauss-Seidel (SSOR): a forward then
 // a backward sweep from zero in the solver's row order, computed here row by
@@ -694,14 +718,9 @@ TEST_CASE("solvers: the preconditioner is the symmetric Gauss-Seidel of the solv
           "the multigrid",
           "[solver][preconditioner]")
 {
-  CDT cdt;
-  make_annulus(cdt);
-  const auto net = extract_spring_network(cdt).network;
-  const auto roles = assign_roles(net, moving_boundary_where([](const P2& p) { return std::hypot(p[0], p[1]) < 1.0; }));
-  std::vector<Index> free;
-  for(Index i = 0; i < Index(net.number_of_vertices()); ++i)
-    if(roles[i] == Vertex_role::free)
-      free.push_back(i);
+  const Annulus a = annulus();
+  const auto& net = a.net;
+  const auto& free = a.free;
   REQUIRE(free.size() > 100);
   const auto positions = net.points;
 
@@ -812,14 +831,10 @@ TEST_CASE("solvers: a block system's multigrid keeps its coarse levels between r
           "stay those of a direct solve",
           "[solver][block][multigrid]")
 {
-  CDT cdt;
-  make_annulus(cdt);
-  const auto net = extract_spring_network(cdt).network;
-  const auto roles = assign_roles(net, moving_boundary_where([](const P2& p) { return std::hypot(p[0], p[1]) < 1.0; }));
-  std::vector<Index> free;
-  for(Index i = 0; i < Index(net.number_of_vertices()); ++i)
-    if(roles[i] == Vertex_role::free)
-      free.push_back(i);
+  const Annulus a = annulus();
+  const auto& net = a.net;
+  const auto& roles = a.roles;
+  const auto& free = a.free;
   REQUIRE(free.size() > 100);
   const std::vector<double> k(net.number_of_edges(), 0.0); // ball-vertex springs alone
   const std::size_t solves = 9;
@@ -834,11 +849,11 @@ TEST_CASE("solvers: a block system's multigrid keeps its coarse levels between r
     for(std::size_t s = 1; s <= solves; ++s) {
       // a smooth shear growing with s (at most 1% of the annulus), and a
       // turn of the inner boundary as the prescribed increment
-      const double a = 0.002 * double(s);
+      const double shear = 0.002 * double(s);
       std::vector<P2> increment(net.number_of_vertices(), P2{0, 0});
       for(std::size_t i = 0; i < positions.size(); ++i) {
         const P2& p = net.points[i];
-        positions[i] = {p[0] + a * std::sin(p[1]), p[1] + a * std::sin(2 * p[0])};
+        positions[i] = {p[0] + shear * std::sin(p[1]), p[1] + shear * std::sin(2 * p[0])};
         if(roles[i] == Vertex_role::moving)
           increment[i] = {-0.01 * p[1], 0.01 * p[0]};
       }

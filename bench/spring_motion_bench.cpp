@@ -604,10 +604,10 @@ Compare_stats compare_solvers(const Case<D>& c, const std::vector<Captured_syste
 // they are subnormal, and slow.) The bytes a scalar sweep must move at least:
 // pattern and values once, right-hand side and inverse diagonal once,
 // solution read and written. The bound is those bytes over the triad
-// bandwidth measured just before each repetition: the bandwidth of this
-// shared machine drifts by 2x from hour to hour, and a bandwidth measured
-// minutes earlier, at the start of the benchmark, made the same code's ratio
-// read 1.28x in one run and 2.55x in another.
+// bandwidth measured just before each repetition, not at the start of the
+// benchmark, minutes earlier: the bandwidth a process gets on a shared host
+// changes in between, and the same code's ratio had read 1.28x in one run
+// and 2.55x in another.
 template <int D>
 Sweep_stats time_sweep(const Case<D>& c, const Captured_system<D>& cap, int threads, std::size_t triad_n)
 {

@@ -84,16 +84,11 @@ struct Ball_vertex_stiffness
   /// products per altitude.
   static std::array<Altitude<3>, 4> altitudes(const std::array<std::array<double, 3>, 4>& p)
   {
-    const auto e1 = internal::sub<3>(p[1], p[0]), e2 = internal::sub<3>(p[2], p[0]), e3 = internal::sub<3>(p[3], p[0]);
-    // N_0 from its own facet's edges, not as -(N_1 + N_2 + N_3): no
-    // cancellation when facet 0 is small
-    const std::array<std::array<double, 3>, 4> N{
-        internal::cross(internal::sub<3>(p[3], p[1]), internal::sub<3>(p[2], p[1])), internal::cross(e2, e3),
-        internal::cross(e3, e1), internal::cross(e1, e2)};
-    const double six_volume = internal::dot<3>(e1, N[1]);
-    const double s = six_volume >= 0 ? 1.0 : -1.0;
+    const auto f = facet_normals(p);
+    const double s = f.measure >= 0 ? 1.0 : -1.0;
     std::array<Altitude<3>, 4> a;
     for(std::size_t i = 0; i < 4; ++i) {
+      const auto& N = f.normal;
       const double NN = internal::dot<3>(N[i], N[i]);
       SPRING_MOTION_CHECK(NN > 0 && std::isfinite(NN), "ball-vertex springs need facets of non-zero size");
       const double len = std::sqrt(NN);
@@ -101,7 +96,7 @@ struct Ball_vertex_stiffness
         a[i].foot[j] = j == i ? 0.0 : -internal::dot<3>(N[i], N[j]) / NN;
       for(std::size_t k = 0; k < 3; ++k)
         a[i].normal[k] = s * N[i][k] / len;
-      a[i].height = std::abs(six_volume) / len;
+      a[i].height = std::abs(f.measure) / len;
     }
     return a;
   }
@@ -137,6 +132,42 @@ struct Ball_vertex_stiffness
   }
 
 private:
+  // The simplex's facet normals N_i (facet i faces vertex i), each as long
+  // as its facet's measure (2D: the edge's length; 3D: twice the triangle's
+  // area) and all pointing to the same side, and the signed measure V with
+  // N_i . (p_i - any vertex of facet i) = V for every i (2D: twice the area;
+  // 3D: six times the volume). Then h_i = |V| / |N_i|, and the foot of
+  // altitude i has the barycentric coordinates b_j = -N_i . N_j / |N_i|^2
+  // (the gradients of the barycentric functions are -N_j / V).
+  template <int D>
+  struct Facet_normals
+  {
+    std::array<std::array<double, D>, D + 1> normal;
+    double measure;
+  };
+  static Facet_normals<2> facet_normals(const std::array<std::array<double, 2>, 3>& p)
+  {
+    Facet_normals<2> f;
+    for(int i = 0; i < 3; ++i) { // the edge from p_j to p_l turned a quarter
+      const auto& j = p[std::size_t((i + 1) % 3)];
+      const auto& l = p[std::size_t((i + 2) % 3)];
+      f.normal[std::size_t(i)] = {l[1] - j[1], j[0] - l[0]};
+    }
+    f.measure = internal::dot<2>(internal::sub<2>(p[0], p[1]), f.normal[0]);
+    return f;
+  }
+  static Facet_normals<3> facet_normals(const std::array<std::array<double, 3>, 4>& p)
+  {
+    const auto e1 = internal::sub<3>(p[1], p[0]), e2 = internal::sub<3>(p[2], p[0]), e3 = internal::sub<3>(p[3], p[0]);
+    // N_0 from its own facet's edges, not as -(N_1 + N_2 + N_3): no
+    // cancellation when facet 0 is small
+    Facet_normals<3> f;
+    f.normal = {internal::cross(internal::sub<3>(p[3], p[1]), internal::sub<3>(p[2], p[1])), internal::cross(e2, e3),
+                internal::cross(e3, e1), internal::cross(e1, e2)};
+    f.measure = internal::dot<3>(e1, f.normal[1]);
+    return f;
+  }
+
   // Block (v, w) of sum_i k_i a_i a_i^T, a_i = (n_i at vertex i, -b_v n_i at
   // each other vertex v), is sum_i k_i c_iv c_iw n_i n_i^T (c_ii = 1, c_iv =
   // -b_v): symmetric and equal to block (w, v), so only the (D+1)(D+2)/2
@@ -144,6 +175,15 @@ private:
   // each entry (r, q), r <= q, handed to out(v, w, r, q, m, pair, value) (m:
   // its place in the upper triangle by rows, pair: the block's place among
   // the blocks v <= w).
+  //
+  // Formed from the facet normals without normalising them: k_i n_i n_i^T =
+  // (k_i / |N_i|^2) N_i N_i^T and c_iv = N_i . N_v / |N_i|^2, and with k =
+  // weight / h^p, h_i = |V| / |N_i|, the factor k_i / |N_i|^2 is weight
+  // |N_i|^(p-2) / |V|^p: for p = 2 the same for all altitudes, with no square
+  // root (the square roots and quotients of the unit normals, heights and
+  // feet were most of the kernel's time). Where that product could leave
+  // the range in which k is not capped, k is taken from the height as
+  // spring_stiffness() gives it.
   template <int D, class Out>
   void blocks(const std::array<std::array<double, D>, D + 1>& p, Out out) const
   {
@@ -158,16 +198,51 @@ private:
         SPRING_MOTION_CHECK(ee >= 1e-100, "ball-vertex springs need edges longer than 1e-50 (found one of squared length "
                                               << ee << "): scale the mesh");
       }
-    const auto alt = altitudes(p);
+    const auto facets = facet_normals(p);
+    const auto& N = facets.normal;
+    std::array<std::array<double, D + 1>, D + 1> G; // N_i . N_j
+    for(int i = 0; i <= D; ++i)
+      for(int j = i; j <= D; ++j)
+        G[std::size_t(i)][std::size_t(j)] = G[std::size_t(j)][std::size_t(i)] =
+            internal::dot<D>(N[std::size_t(i)], N[std::size_t(j)]);
+    const double volume = std::abs(facets.measure);
+    const int vexp = internal::binary_exponent(volume);
+    const int power = exponent == 1 ? 1 : exponent == 2 ? 2 : exponent == 3 ? 3 : 0;
+    // 1 / |V|^p, when |V|^p is a normal number
+    const double inverse_power = power > 0 && volume > 0 && power * (std::abs(vexp) + 1) < 1000
+                                     ? 1.0 / (power == 1 ? volume : power == 2 ? volume * volume
+                                                                               : volume * volume * volume)
+                                     : 0.0;
     std::array<std::array<double, S>, D + 1> knn; // k_i n_i n_i^T, upper triangle by rows
+    std::array<double, D + 1> inverse_NN;
     for(int i = 0; i <= D; ++i) {
-      const auto& n = alt[std::size_t(i)].normal;
-      const double k = spring_stiffness(alt[std::size_t(i)].height);
+      auto n = N[std::size_t(i)];
+      const double NN = G[std::size_t(i)][std::size_t(i)];
+      SPRING_MOTION_CHECK(NN > 0 && std::isfinite(NN), "ball-vertex springs need facets of non-zero size");
+      inverse_NN[std::size_t(i)] = 1.0 / NN;
+      // log2 h within 2 of vexp - log2 |N_i|: far enough inside the range
+      // where capped_pow does not cap h^-p
+      const int hexp = vexp - internal::binary_exponent(NN) / 2;
+      double g; // k_i / |N_i|^2, or k_i with n the unit normal
+      if(inverse_power > 0 && power * (std::abs(hexp) + 3) < 790) {
+        g = weight * inverse_power;
+        if(power != 2) {
+          const double len = std::sqrt(NN);
+          g = power == 1 ? g / len : g * len;
+        }
+      } else {
+        const double len = std::sqrt(NN);
+        for(double& x : n)
+          x /= len;
+        g = spring_stiffness(volume / len);
+      }
       for(int r = 0, m = 0; r < D; ++r)
         for(int q = r; q < D; ++q, ++m)
-          knn[std::size_t(i)][std::size_t(m)] = k * n[std::size_t(r)] * n[std::size_t(q)];
+          knn[std::size_t(i)][std::size_t(m)] = g * n[std::size_t(r)] * n[std::size_t(q)];
     }
-    auto c = [&](int i, int v) { return v == i ? 1.0 : -alt[std::size_t(i)].foot[std::size_t(v)]; };
+    auto c = [&](int i, int v) {
+      return v == i ? 1.0 : G[std::size_t(i)][std::size_t(v)] * inverse_NN[std::size_t(i)];
+    };
     for(int v = 0, pair = 0; v <= D; ++v)
       for(int w = v; w <= D; ++w, ++pair) {
         std::array<double, S> B{};

@@ -917,13 +917,14 @@ private:
     if(mg) {
       const Csr_view fine{order_.size(), row_offsets_.data(), col_.data(), values(), diagonal(), B};
       if constexpr(B) {
-        SPRING_MOTION_CHECK(positions_ && positions_->size() > *std::max_element(order_.begin(), order_.end()),
-                            "the block system's multigrid needs the vertices' positions (set_positions)");
         // solves counted since the levels were last computed: the count, not
         // the thread count or a timing, decides, so the results stay the same
         // for any thread count
         const bool choose = !rigid_.built() || refresh_.due();
         if(choose || !keep || ++kept_solves_ >= options.multigrid_coarse_interval) {
+          // checked where read (a search of the whole order, not at every solve)
+          SPRING_MOTION_CHECK(positions_ && positions_->size() > *std::max_element(order_.begin(), order_.end()),
+                              "the block system's multigrid needs the vertices' positions (set_positions)");
           row_points_.resize(order_.size());
           for(std::size_t r = 0; r < order_.size(); ++r)
             row_points_[r] = (*positions_)[order_[r]];

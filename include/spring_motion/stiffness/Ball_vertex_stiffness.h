@@ -243,18 +243,37 @@ private:
     auto c = [&](int i, int v) {
       return v == i ? 1.0 : G[std::size_t(i)][std::size_t(v)] * inverse_NN[std::size_t(i)];
     };
-    for(int v = 0, pair = 0; v <= D; ++v)
-      for(int w = v; w <= D; ++w, ++pair) {
-        std::array<double, S> B{};
+    // the blocks v <= w < D from the springs; the last vertex's from the
+    // others: each block row sums to zero (sum_v c_iv = 0, the feet's
+    // coordinates summing to 1), so a rigid translation is in the null
+    // space by construction, and the tetrahedron needs 6 of its 10 blocks
+    constexpr int pairs = (D + 1) * (D + 2) / 2;
+    auto pair_of = [](int v, int w) { // v <= w
+      return v * (2 * D + 3 - v) / 2 + (w - v);
+    };
+    std::array<std::array<double, S>, pairs> B{};
+    for(int v = 0; v < D; ++v)
+      for(int w = v; w < D; ++w) {
+        auto& b = B[std::size_t(pair_of(v, w))];
         for(int i = 0; i <= D; ++i) {
           const double f = c(i, v) * c(i, w);
           for(int m = 0; m < S; ++m)
-            B[std::size_t(m)] += f * knn[std::size_t(i)][std::size_t(m)];
+            b[std::size_t(m)] += f * knn[std::size_t(i)][std::size_t(m)];
         }
+      }
+    for(int v = 0; v <= D; ++v) { // B(v, D) = -sum_{w < D} B(v, w)
+      auto& last = B[std::size_t(pair_of(v, D))];
+      for(int w = 0; w < D; ++w) {
+        const auto& b = B[std::size_t(v == D ? pair_of(w, D) : pair_of(std::min(v, w), std::max(v, w)))];
+        for(int m = 0; m < S; ++m)
+          last[std::size_t(m)] -= b[std::size_t(m)];
+      }
+    }
+    for(int v = 0, pair = 0; v <= D; ++v)
+      for(int w = v; w <= D; ++w, ++pair)
         for(int r = 0, m = 0; r < D; ++r)
           for(int q = r; q < D; ++q, ++m)
-            out(v, w, r, q, m, pair, B[std::size_t(m)]);
-      }
+            out(v, w, r, q, m, pair, B[std::size_t(pair)][std::size_t(m)]);
   }
 
   // K += the whole matrix, each distinct value written to its places

@@ -1,0 +1,103 @@
+// Time per element of the element models' kernels alone: what the block
+// assembly asks of a model for one triangle or tetrahedron (its distinct
+// blocks where the model gives them, else its whole matrix), on random
+// simplices, without the scatter into the system. A table of the median
+// over repetitions of ns per element.
+//
+//   ./build-bench/bench/element_kernels [--repetitions N]
+//
+// The library is header-only, so the same file built against another
+// commit's include folder times that commit's kernels:
+//   g++ -O3 -DNDEBUG -std=c++17 -I OLD/include bench/element_kernels.cpp
+#include <spring_motion/spring_motion.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <vector>
+
+namespace sm = spring_motion;
+
+namespace {
+
+template <int D>
+using Simplex = std::array<std::array<double, D>, D + 1>;
+
+// corners jittered around a regular-ish simplex, so that no element is flat
+template <int D>
+std::vector<Simplex<D>> simplices(std::size_t n)
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.2, 0.2);
+  std::vector<Simplex<D>> out(n);
+  for(auto& s : out)
+    for(int v = 0; v <= D; ++v)
+      for(int c = 0; c < D; ++c)
+        s[std::size_t(v)][std::size_t(c)] = (v == c + 1 ? 1.0 : 0.0) + u(rng);
+  return out;
+}
+
+template <int D, class Model>
+double ns_per_element(const Model& model, const std::vector<Simplex<D>>& el, int repetitions)
+{
+  constexpr bool symmetric = sm::internal::Has_symmetric_blocks<Model, D>::value;
+  constexpr int size = symmetric ? (D + 1) * (D + 2) / 2 * D * (D + 1) / 2 : (D + 1) * D * (D + 1) * D;
+  std::vector<double> times;
+  double sink = 0;
+  for(int r = 0; r < repetitions; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for(const auto& p : el) {
+      std::array<double, size> K{};
+      if constexpr(symmetric)
+        model.add_symmetric_blocks(p, K.data());
+      else
+        model.add_element_matrix(p, K.data());
+      sink += K[0];
+    }
+    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  if(sink == 0.125) // keeps the kernels' results alive
+    std::puts("");
+  std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
+  return 1e9 * times[times.size() / 2] / double(el.size());
+}
+
+template <class Model>
+void row(const char* name, const Model& model, int repetitions)
+{
+  static const auto triangles = simplices<2>(20000);
+  static const auto tetrahedra = simplices<3>(20000);
+  std::printf("%-26s %12.1f %14.1f\n", name, ns_per_element<2>(model, triangles, repetitions),
+              ns_per_element<3>(model, tetrahedra, repetitions));
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  int repetitions = 21;
+  for(int a = 1; a < argc; ++a) {
+    if(std::strcmp(argv[a], "--repetitions") == 0 && a + 1 < argc)
+      repetitions = std::max(1, std::atoi(argv[++a]));
+    else {
+      std::fprintf(stderr, "usage: element_kernels [--repetitions N]\n");
+      return 2;
+    }
+  }
+  std::printf("Element kernels, one thread, 20000 random simplices, median of %d repetitions:\n"
+              "%-26s %12s %14s\n",
+              repetitions, "model", "ns/triangle", "ns/tetrahedron");
+  sm::Ball_vertex_stiffness p1, p2, p3;
+  p2.exponent = 2;
+  p3.exponent = 3;
+  row("ball_vertex", p1, repetitions);
+  row("ball_vertex_p2", p2, repetitions);
+  row("ball_vertex_p3", p3, repetitions);
+  row("grid_scaled+ball_vertex", sm::With_ball_vertex<sm::Grid_scaled_stiffness>{}, repetitions);
+  row("torsional", sm::Torsional_stiffness{}, repetitions);
+  return 0;
+}

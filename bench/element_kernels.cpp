@@ -7,8 +7,9 @@
 //   ./build-bench/bench/element_kernels [--repetitions N]
 //
 // The library is header-only, so the same file built against another
-// commit's include folder times that commit's kernels:
-//   g++ -O3 -DNDEBUG -std=c++17 -I OLD/include bench/element_kernels.cpp
+// commit's include folder, with the flags of the CMake build (CGAL's exact
+// predicates need -frounding-math), times that commit's kernels:
+//   g++ -O3 -DNDEBUG -frounding-math -fopenmp -std=c++17 -I OLD/include bench/element_kernels.cpp
 #include <spring_motion/spring_motion.h>
 
 #include <algorithm>

@@ -28,7 +28,8 @@ namespace {
 template <int D>
 using Simplex = std::array<std::array<double, D>, D + 1>;
 
-// corners jittered around a regular-ish simplex, so that no element is flat
+// the corners of the unit simplex (the origin and the unit vectors), each
+// moved by up to 0.2 per coordinate: no element is flat
 template <int D>
 std::vector<Simplex<D>> simplices(std::size_t n)
 {

@@ -138,7 +138,7 @@ private:
   // N_i . (p_i - any vertex of facet i) = V for every i (2D: twice the area;
   // 3D: six times the volume). Then h_i = |V| / |N_i|, and the foot of
   // altitude i has the barycentric coordinates b_j = -N_i . N_j / |N_i|^2
-  // (the gradients of the barycentric functions are -N_j / V).
+  // (the gradients of the barycentric functions are N_j / V).
   template <int D>
   struct Facet_normals
   {

@@ -220,22 +220,36 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
     }
     return;
   }
-  for(int a = 0; a <= D; ++a)
-    for(int b = 0; b <= D; ++b) {
-      const Index dest = to[a * (D + 1) + b];
-      if(dest == Free_system<D>::none)
-        continue;
-      double* out = blocks + std::size_t(dest) * DD;
-      if constexpr(symmetric) {
-        const double* B = &Ke[std::size_t(upper_triangle_index<D + 1>(std::min(a, b), std::max(a, b)) * S)];
+  auto add_to = [&](Index dest, const std::array<double, DD>& block) {
+    if(dest == Free_system<D>::none)
+      return;
+    double* out = blocks + std::size_t(dest) * DD;
+    for(int k = 0; k < DD; ++k)
+      out[k] += block[std::size_t(k)];
+  };
+  if constexpr(symmetric) {
+    // distinct block u = (a, b), a <= b, goes to (a, b) and to (b, a): it is
+    // expanded once, and its index and entries' places are constants
+    int u = 0;
+    for(int a = 0; a <= D; ++a)
+      for(int b = a; b <= D; ++b, ++u) {
+        std::array<double, DD> full;
         for(int r = 0; r < D; ++r)
           for(int c = 0; c < D; ++c)
-            out[r * D + c] += symmetric_entry<D>(B, r, c);
-      } else
+            full[std::size_t(r * D + c)] = symmetric_entry<D>(&Ke[std::size_t(u * S)], r, c);
+        add_to(to[a * (D + 1) + b], full);
+        if(a != b)
+          add_to(to[b * (D + 1) + a], full);
+      }
+  } else
+    for(int a = 0; a <= D; ++a)
+      for(int b = 0; b <= D; ++b) {
+        std::array<double, DD> block;
         for(int r = 0; r < D; ++r)
           for(int c = 0; c < D; ++c)
-            out[r * D + c] += Ke[std::size_t((a * D + r) * ND + (b * D + c))];
-    }
+            block[std::size_t(r * D + c)] = Ke[std::size_t((a * D + r) * ND + (b * D + c))];
+        add_to(to[a * (D + 1) + b], block);
+      }
 }
 
 // The element's blocks lie in the rows of its D + 1 vertices, which belong
@@ -260,6 +274,20 @@ inline void prefetch_destinations(const Index* to, const double* blocks)
 #else
   (void)to;
   (void)blocks;
+#endif
+}
+
+// The corners' positions are read at random too: the block array streamed
+// through the cache since the last step has evicted most of them.
+template <int D, class Points>
+inline void prefetch_points(const std::array<Index, D + 1>& element, const Points& x)
+{
+#if defined(__GNUC__)
+  for(int v = 0; v <= D; ++v)
+    __builtin_prefetch(x[element[std::size_t(v)]].data());
+#else
+  (void)element;
+  (void)x;
 #endif
 }
 
@@ -288,8 +316,10 @@ void add_element_matrices(const std::vector<typename Spring_network<D>::Point>& 
     for(long h = first; h < last; ++h) {
       const long end = long(chunks[std::size_t(h) + 1]);
       for(long s = long(chunks[std::size_t(h)]); s < end; ++s) {
-        if(s + prefetch_elements < end)
+        if(s + prefetch_elements < end) {
           prefetch_destinations<D>(&dest[std::size_t(s + prefetch_elements) * (D + 1) * (D + 1)], blocks);
+          prefetch_points<D>(vertices[std::size_t(s + prefetch_elements)], x);
+        }
         add_element_matrix<D>(element_points<D>(vertices, x, std::size_t(s)), model, elements[std::size_t(s)],
                               &dest[std::size_t(s) * (D + 1) * (D + 1)], blocks, first_bad, error);
       }

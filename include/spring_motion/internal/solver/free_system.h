@@ -1023,14 +1023,15 @@ private:
 #pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(&& : fits, symmetric)
     for(long q = 0; q < long(nb); ++q) {
       const double* m = v + std::size_t(q) * DD;
-      bool block_fits = true;
+      // & rather than &&: no branch per entry
+      bool block_fits = true, block_symmetric = true;
+      for(int k = 0; k < DD; ++k)
+        block_fits &= fits_single(m[k]);
       for(int r = 0; r < D; ++r)
-        for(int c = 0; c < D; ++c) {
-          const double a = std::abs(m[r * D + c]);
-          block_fits = block_fits && (a == 0 || (a >= 1e-30 && a <= 1e30));
-          symmetric = symmetric && m[r * D + c] == m[c * D + r];
-        }
+        for(int c = r + 1; c < D; ++c)
+          block_symmetric &= m[r * D + c] == m[c * D + r];
       fits = fits && block_fits;
+      symmetric = symmetric && block_symmetric;
       copy_upper_triangle<D>(m, &upper_off_[std::size_t(q) * UD]);
       if(block_fits)
         copy_upper_triangle<D>(m, &single_off_[std::size_t(q) * UD]);
@@ -1047,6 +1048,13 @@ private:
       for(int k = 0; k < DD; ++k)
         out[k] = float(m[k]);
     }
+  }
+
+  // whether a float keeps 24 bits of value a
+  static bool fits_single(double a)
+  {
+    a = std::abs(a);
+    return a == 0 || (a >= 1e-30 && a <= 1e30);
   }
 
   // z += correction P cycle(P^T (r - A z)). After a forward Gauss-Seidel

@@ -228,8 +228,8 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
       out[k] += block[std::size_t(k)];
   };
   if constexpr(symmetric) {
-    // distinct block u = (a, b), a <= b, goes to (a, b) and to (b, a): it is
-    // expanded once, and its index and entries' places are constants
+    // distinct block u = (a, b), a <= b, goes to (a, b) and to (b, a):
+    // expanded from its upper triangle once for both
     int u = 0;
     for(int a = 0; a <= D; ++a)
       for(int b = a; b <= D; ++b, ++u) {

@@ -1023,7 +1023,7 @@ private:
 #pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(&& : fits, symmetric)
     for(long q = 0; q < long(nb); ++q) {
       const double* m = v + std::size_t(q) * DD;
-      // & rather than &&: no branch per entry
+      // & rather than &&: every entry tested, no early exit to branch on
       bool block_fits = true, block_symmetric = true;
       for(int k = 0; k < DD; ++k)
         block_fits &= fits_single(m[k]);

@@ -113,6 +113,24 @@ TEST_CASE("capped_math: the exponent from the bits and the division-free product
       INFO(a << " * " << b);
       CHECK(same_bits(capped_product(a, b), reference_product(a, b)));
     }
+  // around the power's shortcut (2^-198, 2^198) and the bound of its
+  // products (|e| (|ilogb x| + 1) = 800), every exponent, with no overflow
+  // (the reference squares x for |e| = 1 too, which may overflow: it is
+  // called after the overflow flag is read)
+  for(double e : exponents)
+    for(int k : {-798, -400, -266, -265, -199, -198, -197, 197, 198, 199, 265, 266, 399, 400, 798, 799})
+      for(double x : {std::ldexp(1.0, k), std::nextafter(std::ldexp(1.0, k), 0.0), std::ldexp(1.7, k)}) {
+        INFO(x << " ^ " << e);
+        std::feclearexcept(FE_OVERFLOW);
+        const double got = capped_pow(x, e);
+        CHECK(std::fetestexcept(FE_OVERFLOW) == 0);
+        CHECK(same_bits(got, reference_pow(x, e)));
+      }
+  for(double a : {std::ldexp(1.0, 398), std::nextafter(std::ldexp(1.0, 399), 0.0), std::ldexp(1.0, 399)})
+    for(double b : {std::ldexp(1.0, 398), std::nextafter(std::ldexp(1.0, 399), 0.0), std::ldexp(1.0, 399), 1e-300}) {
+      INFO(a << " * " << b);
+      CHECK(same_bits(capped_product(a, b), reference_product(a, b)));
+    }
   CHECK(binary_exponent(std::numeric_limits<double>::denorm_min()) == -1074);
   CHECK(binary_exponent(std::numeric_limits<double>::infinity()) == 1024);
   CHECK(binary_exponent(1.0) == 0);

@@ -193,6 +193,57 @@ TEST_CASE("inverse sin^2: the models that read it give the stiffness of their an
   }
 }
 
+TEST_CASE("inverse sin^2: the assembly's per-step edge function gives each model's stiffness bitwise",
+          "[stiffness][angles]")
+{
+  // the grid-scaled formula written from the capped operations, apart from
+  // the model's own code and the per-step form's
+  const auto formula = [](double alpha, double beta, double reference, double l0, double length, double s) {
+    return capped_product(capped_quotient(l0, length),
+                          capped_pow(length / reference, -alpha) + capped_pow(s, beta));
+  };
+  std::mt19937 rng(11);
+  // most values in a mesh's range, every fifth trial's anywhere up to the cap
+  std::uniform_real_distribution<double> exponent(-6, 6), wide(-250, 250);
+  std::uniform_int_distribution<int> how_many(1, 10);
+  std::vector<double> values(10 + Inverse_sin_squared::padded_size, 1.0);
+  const auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  int checked = 0;
+  for(int dimension : {2, 3})
+    for(const auto& parameters : {std::array<double, 3>{0, 0, 1}, std::array<double, 3>{1.5, 2, 1e-3},
+                                  std::array<double, 3>{3, 0.5, 1000}}) {
+      Grid_scaled_stiffness model;
+      if(parameters[0] > 0) {
+        model.alpha = parameters[0];
+        model.beta = parameters[1];
+      }
+      model.reference_length = parameters[2];
+      const With_ball_vertex<Grid_scaled_stiffness> combined{model, {}};
+      const Zeng_Ethier_semi_torsional_stiffness other;
+      const Stiffness_context ctx{dimension, std::pow(10.0, exponent(rng))};
+      const Edge_function<Grid_scaled_stiffness> f(model, ctx);
+      const Edge_function<With_ball_vertex<Grid_scaled_stiffness>> g(combined, ctx);
+      const Edge_function<Zeng_Ethier_semi_torsional_stiffness> h(other, ctx);
+      for(int trial = 0; trial < 500; ++trial) {
+        auto& range = trial % 5 == 0 ? wide : exponent;
+        const std::size_t n = std::size_t(how_many(rng));
+        for(std::size_t m = 0; m < n; ++m)
+          values[m] = 1 + std::pow(10.0, range(rng));
+        const Inverse_sin_squared angles{values.data(), n, values.size()};
+        const double length = std::pow(10.0, range(rng));
+        const double expected = formula(model.alpha_for(dimension), model.beta_for(dimension),
+                                        model.reference_length, ctx.longest_initial_edge, length, angles.sum());
+        INFO("dimension " << dimension << " alpha " << model.alpha_for(dimension) << " length " << length);
+        CHECK(same(model(length, angles, ctx), expected));
+        CHECK(same(f(length, angles), expected));
+        CHECK(same(g(length, angles), expected));
+        CHECK(same(h(length, angles), other(length, angles, ctx)));
+        ++checked;
+      }
+    }
+  CHECK(checked == 2 * 3 * 500);
+}
+
 TEST_CASE("inverse sin^2: sum() adds the values in order, bitwise, whatever follows them", "[stiffness][angles]")
 {
   // values of every size the branch-free path takes (0..8) and more, then

@@ -10,6 +10,32 @@
 
 namespace spring_motion {
 
+namespace internal {
+
+/// The grid-scaled stiffness of an edge from its length and the sum of 1/sin^2
+/// of its angles, with the exponents' tests made when constructed: the
+/// model's formula, kept by the assembly for all the edges of a step.
+class Grid_scaled_terms
+{
+public:
+  Grid_scaled_terms(double alpha, double beta, double reference_length, double longest_initial_edge)
+      : length_power_(-alpha), angle_power_(beta), reference_length_(reference_length), l0_(longest_initial_edge)
+  {}
+
+  double operator()(double length, double s) const
+  {
+    const double l = length / reference_length_;
+    const double lambda = capped_quotient(l0_, length);
+    return capped_product(lambda, length_power_(l) + angle_power_(s));
+  }
+
+private:
+  Capped_power length_power_, angle_power_;
+  double reference_length_, l0_;
+};
+
+} // namespace internal
+
 /// The paper's grid-scaled springs (Eq. 5-6):
 /// `k = lambda (1/l^alpha + (sum_m 1/sin^2 theta_m)^beta)`, `lambda = l0 / l`,
 /// with facing angles in 2D and dihedral angles in 3D.
@@ -53,12 +79,32 @@ private:
   // s = sum_m 1/sin^2 theta_m
   double from_angle_sum(double length, double s, const Stiffness_context& ctx) const
   {
-    const double l = length / reference_length;
-    const double lambda = internal::capped_quotient(ctx.longest_initial_edge, length);
-    return internal::capped_product(lambda, internal::capped_pow(l, -alpha_for(ctx.dimension)) +
-                                                internal::capped_pow(s, beta_for(ctx.dimension)));
+    return internal::Grid_scaled_terms(alpha_for(ctx.dimension), beta_for(ctx.dimension), reference_length,
+                                       ctx.longest_initial_edge)(length, s);
   }
 };
+
+namespace internal {
+
+template <>
+struct Edge_function<Grid_scaled_stiffness>
+{
+  Edge_function(const Grid_scaled_stiffness& m, const Stiffness_context& ctx)
+      : model(m), context(ctx),
+        terms(m.alpha_for(ctx.dimension), m.beta_for(ctx.dimension), m.reference_length, ctx.longest_initial_edge)
+  {}
+  double operator()(double length, const double* angles, std::size_t n) const
+  {
+    return model(length, angles, n, context);
+  }
+  double operator()(double length, Inverse_sin_squared angles) const { return terms(length, angles.sum()); }
+
+  const Grid_scaled_stiffness model;
+  const Stiffness_context context;
+  const Grid_scaled_terms terms;
+};
+
+} // namespace internal
 
 } // namespace spring_motion
 

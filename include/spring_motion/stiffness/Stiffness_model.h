@@ -166,6 +166,33 @@ template <class Model>
 struct Has_edge_spring_form<Model, std::void_t<decltype(std::declval<const Model&>().edge_spring_form())>>
     : std::true_type {};
 
+/// A model's stiffness of one edge at one context, for all the edges of a
+/// step: `Edge_function<Model> f(model, ctx)`, then `f(length, angles, n)`
+/// or, for a model that reads 1/sin^2, `f(length, Inverse_sin_squared)`.
+/// The assembly makes one per thread, a local that the loop's stores cannot
+/// alias, so that the terms of the context alone (l0 / max_stiffness) are
+/// computed once. The model is called through the reference given; a
+/// built-in model whose terms depend on its parameters and the context
+/// alone specialises this to work them out once (Grid_scaled_stiffness.h)
+/// instead of at every edge.
+template <class Model>
+struct Edge_function
+{
+  const Model& model;
+  const Stiffness_context context;
+
+  Edge_function(const Model& m, const Stiffness_context& ctx) : model(m), context(ctx) {}
+  double operator()(double length, const double* angles, std::size_t n) const
+  {
+    return model(length, angles, n, context);
+  }
+  template <class M = Model, class = std::enable_if_t<Reads_inverse_sin_squared<M>::value>>
+  double operator()(double length, Inverse_sin_squared angles) const
+  {
+    return model(length, angles, context);
+  }
+};
+
 /// How the edge springs of `model` act in a block system.
 template <class Model>
 Edge_spring_form edge_spring_form(const Model& model)

@@ -70,6 +70,19 @@ struct With_ball_vertex
   }
 };
 
+namespace internal {
+
+// the edge model's per-step form: the ball-vertex part is no edge stiffness
+template <class Edge_model>
+struct Edge_function<With_ball_vertex<Edge_model>> : Edge_function<Edge_model>
+{
+  Edge_function(const With_ball_vertex<Edge_model>& m, const Stiffness_context& ctx)
+      : Edge_function<Edge_model>(m.edge, ctx)
+  {}
+};
+
+} // namespace internal
+
 } // namespace spring_motion
 
 #endif

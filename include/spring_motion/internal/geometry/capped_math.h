@@ -65,28 +65,61 @@ inline bool all_finite(const double* v, std::size_t n)
   return (carries >> 63) == 0;
 }
 
-/// min(x^e, max_stiffness) for x >= 0.
-inline double capped_pow(double x, double e)
+/// min(x^e, max_stiffness) for x >= 0, with what depends on e alone (its
+/// size, whether it is a small whole number) worked out when made: a loop
+/// that raises many values to one exponent then tests only x.
+class Capped_power
 {
-  if(x == 0)
-    return e > 0 ? 0.0 : (e == 0 ? 1.0 : max_stiffness);
-  // |log2 x| <= |ilogb x| + 1, so below this bound x^e lies in (2^-800,
-  // 2^800), far inside the cap: no log needed, and the models' usual
-  // exponents (1 to 4, either sign) are a few products instead of pow
-  // (within 2 ulp of it; pow is what stiffness costs most)
-  if(std::abs(e) * double(std::abs(binary_exponent(x)) + 1) < 800) {
-    const double a = std::abs(e);
-    if(a == 1 || a == 2 || a == 3 || a == 4) {
-      const double x2 = x * x;
-      const double p = a == 1 ? x : a == 2 ? x2 : a == 3 ? x2 * x : x2 * x2;
-      return e > 0 ? p : 1.0 / p;
-    }
-    return std::pow(x, e);
+public:
+  explicit Capped_power(double e)
+      : e_(e), a_(std::abs(e)), whole_(a_ == 1 ? 1 : a_ == 2 ? 2 : a_ == 3 ? 3 : a_ == 4 ? 4 : 0)
+  {}
+
+  double operator()(double x) const
+  {
+    // the usual case first, tested by two comparisons: from x in [2^-198,
+    // 2^198) the test below gives |e| (|ilogb x| + 1) <= 4 * 199 < 800
+    if(whole_ != 0 && x >= 0x1p-198 && x < 0x1p198)
+      return whole_power(x);
+    if(x == 0)
+      return e_ > 0 ? 0.0 : (e_ == 0 ? 1.0 : max_stiffness);
+    // |log2 x| <= |ilogb x| + 1, so below this bound x^e lies in (2^-800,
+    // 2^800), far inside the cap: no log needed, and the models' usual
+    // exponents (1 to 4, either sign) are a few products instead of pow
+    // (within 2 ulp of it; pow is what stiffness costs most)
+    if(a_ * double(std::abs(binary_exponent(x)) + 1) < 800)
+      return whole_ != 0 ? whole_power(x) : std::pow(x, e_);
+    if(e_ * std::log(x) >= std::log(max_stiffness))
+      return max_stiffness;
+    return std::min(std::pow(x, e_), max_stiffness);
   }
-  if(e * std::log(x) >= std::log(max_stiffness))
-    return max_stiffness;
-  return std::min(std::pow(x, e), max_stiffness);
-}
+
+private:
+  // x^e for |e| = whole_, from the products x^|e| needs and no others (x^4
+  // of an x whose x^1 is in range may overflow)
+  double whole_power(double x) const
+  {
+    double p = x;
+    switch(whole_) {
+    case 2: p = x * x; break;
+    case 3: p = x * x * x; break;
+    case 4: {
+      const double x2 = x * x;
+      p = x2 * x2;
+      break;
+    }
+    default: break;
+    }
+    return e_ > 0 ? p : 1.0 / p;
+  }
+
+  double e_, a_;
+  int whole_; // |e| when it is 1, 2, 3 or 4, else 0
+};
+
+/// min(x^e, max_stiffness) for x >= 0.
+inline double capped_pow(double x, double e) { return Capped_power(e)(x); }
+
 /// min(a / b, max_stiffness) for a >= 0, b > 0.
 inline double capped_quotient(double a, double b)
 {
@@ -97,7 +130,10 @@ inline double capped_quotient(double a, double b)
 /// min(a b, max_stiffness) for a, b >= 0 and finite.
 inline double capped_product(double a, double b)
 {
-  // a b < 2^801, far below the cap: the product, without the division
+  // a b < 2^801, far below the cap: the product, without the division;
+  // first by comparisons alone (a, b < 2^399: exponents at most 398 each)
+  if(a > 0 && b > 0 && a < 0x1p399 && b < 0x1p399)
+    return a * b;
   if(a > 0 && b > 0 && binary_exponent(a) + binary_exponent(b) < 800)
     return a * b;
   if(b > 0 && a >= max_stiffness / b)

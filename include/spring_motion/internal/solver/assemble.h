@@ -132,45 +132,47 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   }
   const auto& off = by_face ? slots.edge_face_slot_offsets : slots.layout_slot_offsets;
   const long ne = long(net.number_of_edges());
-  // a copy the loop's stores into k cannot alias: the model's terms of the
-  // context alone (l0 / max_stiffness) are then computed once, not per edge
-  const Stiffness_context context = ctx;
   k.resize(std::size_t(ne));
   long bad = ne, coincident = ne;
-#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(ne))) \
-    reduction(min : bad, coincident)
-  for(long q = 0; q < ne; ++q) {
-    long e = q;
-    double l; // > 0 for a tiny edge too
-    if(by_layout) {
-      e = long(slots.layout_edge[std::size_t(q)]);
-      const auto& ends = slots.layout_edge_ends[std::size_t(q)];
-      l = distance<D>(xt[ends[0]], xt[ends[1]]);
-    } else {
-      const auto& ed = net.edges[std::size_t(e)];
-      l = distance<D>(x[ed[0]], x[ed[1]]);
+#pragma omp parallel num_threads(internal::heavy_thread_count(threads, std::size_t(ne)))
+  {
+    // each thread's own (Edge_function): the model's terms of the context and
+    // its parameters alone are then worked out once, not per edge
+    const Edge_function<Model> stiffness_of(model, ctx);
+#pragma omp for schedule(static) reduction(min : bad, coincident)
+    for(long q = 0; q < ne; ++q) {
+      long e = q;
+      double l; // > 0 for a tiny edge too
+      if(by_layout) {
+        e = long(slots.layout_edge[std::size_t(q)]);
+        const auto& ends = slots.layout_edge_ends[std::size_t(q)];
+        l = distance<D>(xt[ends[0]], xt[ends[1]]);
+      } else {
+        const auto& ed = net.edges[std::size_t(e)];
+        l = distance<D>(x[ed[0]], x[ed[1]]);
+      }
+      const double* a = nullptr;
+      std::size_t na = 0, readable = 0;
+      if(kind != Angle_kind::none) {
+        a = angles.data() + off[std::size_t(q)];
+        na = off[std::size_t(q) + 1] - off[std::size_t(q)];
+        if(padding > 0)
+          readable = angles.size() - off[std::size_t(q)];
+      }
+      // a zero-length edge (coincident vertices) never reaches a model's 1/l
+      double v = 0.0;
+      if(l > 0) {
+        if constexpr(sines)
+          v = stiffness_of(l, Inverse_sin_squared{a, na, readable});
+        else
+          v = stiffness_of(l, a, na);
+      }
+      k[std::size_t(e)] = v;
+      if(l == 0)
+        coincident = std::min(coincident, e);
+      else if(!(v >= 0 && std::isfinite(v)))
+        bad = std::min(bad, e);
     }
-    const double* a = nullptr;
-    std::size_t na = 0, readable = 0;
-    if(kind != Angle_kind::none) {
-      a = angles.data() + off[std::size_t(q)];
-      na = off[std::size_t(q) + 1] - off[std::size_t(q)];
-      if(padding > 0)
-        readable = angles.size() - off[std::size_t(q)];
-    }
-    // a zero-length edge (coincident vertices) never reaches a model's 1/l
-    double v = 0.0;
-    if(l > 0) {
-      if constexpr(sines)
-        v = model(l, Inverse_sin_squared{a, na, readable}, context);
-      else
-        v = model(l, a, na, context);
-    }
-    k[std::size_t(e)] = v;
-    if(l == 0)
-      coincident = std::min(coincident, e);
-    else if(!(v >= 0 && std::isfinite(v)))
-      bad = std::min(bad, e);
   }
   if(coincident < ne) {
     const auto& ed = net.edges[std::size_t(coincident)];
@@ -231,7 +233,9 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
     // distinct block u = (a, b), a <= b, goes to (a, b) and to (b, a):
     // expanded from its upper triangle once for both
     int u = 0;
+#pragma GCC unroll 4
     for(int a = 0; a <= D; ++a)
+#pragma GCC unroll 4
       for(int b = a; b <= D; ++b, ++u) {
         std::array<double, DD> full;
         for(int r = 0; r < D; ++r)

@@ -99,7 +99,7 @@ struct Edge_function<Grid_scaled_stiffness>
   }
   double operator()(double length, Inverse_sin_squared angles) const { return terms(length, angles.sum()); }
 
-  const Grid_scaled_stiffness model;
+  const Grid_scaled_stiffness& model;
   const Stiffness_context context;
   const Grid_scaled_terms terms;
 };

@@ -131,10 +131,9 @@ inline double capped_quotient(double a, double b)
 inline double capped_product(double a, double b)
 {
   // a b < 2^801, far below the cap: the product, without the division;
-  // first by comparisons alone (a, b < 2^399: exponents at most 398 each)
-  if(a > 0 && b > 0 && a < 0x1p399 && b < 0x1p399)
-    return a * b;
-  if(a > 0 && b > 0 && binary_exponent(a) + binary_exponent(b) < 800)
+  // by comparisons alone where they decide (a, b < 2^399: exponents at most
+  // 398 each), else from the exponents
+  if(a > 0 && b > 0 && ((a < 0x1p399 && b < 0x1p399) || binary_exponent(a) + binary_exponent(b) < 800))
     return a * b;
   if(b > 0 && a >= max_stiffness / b)
     return max_stiffness;

@@ -20,6 +20,7 @@
 #include <ostream>
 #include <random>
 #include <map>
+#include <memory>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -33,69 +34,69 @@ namespace fs = std::filesystem;
 
 // Formats numbers with std::to_chars: locale-independent, and for doubles
 // the shortest text that parses back to the same value, which is what makes
-// write_medit -> read_medit exact. Output is buffered in large chunks.
+// write_medit -> read_medit exact. Numbers are formatted straight into a
+// fixed buffer written out in large chunks: appending each number's text to
+// a std::string took about half of the time of writing a VTU file.
 class Text_writer
 {
 public:
-  explicit Text_writer(std::ostream& out) : out_(out) { buffer_.reserve(capacity + 64); }
+  explicit Text_writer(std::ostream& out) : out_(out), buffer_(new char[capacity]) {}
   ~Text_writer() { flush(); }
   Text_writer(const Text_writer&) = delete;
   Text_writer& operator=(const Text_writer&) = delete;
 
-  Text_writer& operator<<(double value)
-  {
-    char text[64];
-    const std::to_chars_result result = std::to_chars(text, text + sizeof(text), value);
-    return append(text, result.ptr);
-  }
-  Text_writer& operator<<(std::int64_t value)
-  {
-    char text[32];
-    const std::to_chars_result result = std::to_chars(text, text + sizeof(text), value);
-    return append(text, result.ptr);
-  }
-  Text_writer& operator<<(std::uint32_t value) { return *this << static_cast<std::int64_t>(value); }
-  Text_writer& operator<<(int value) { return *this << static_cast<std::int64_t>(value); }
-  Text_writer& operator<<(std::size_t value) { return *this << static_cast<std::int64_t>(value); }
+  Text_writer& operator<<(double value) { return format(value); }
+  Text_writer& operator<<(std::int64_t value) { return format(value); }
+  Text_writer& operator<<(std::uint32_t value) { return format(value); }
+  Text_writer& operator<<(int value) { return format(value); }
+  Text_writer& operator<<(std::size_t value) { return format(value); }
   Text_writer& operator<<(char c)
   {
-    buffer_.push_back(c);
-    return maybe_flush();
+    if(size_ == capacity)
+      flush();
+    buffer_[size_++] = c;
+    return *this;
   }
-  Text_writer& operator<<(const std::string& text)
-  {
-    buffer_ += text;
-    return maybe_flush();
-  }
-  Text_writer& operator<<(const char* text)
-  {
-    buffer_ += text;
-    return maybe_flush();
-  }
+  Text_writer& operator<<(const std::string& text) { return append(text.data(), text.size()); }
+  Text_writer& operator<<(const char* text) { return append(text, std::strlen(text)); }
 
   void flush()
   {
-    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-    buffer_.clear();
+    out_.write(buffer_.get(), static_cast<std::streamsize>(size_));
+    size_ = 0;
   }
 
 private:
   static constexpr std::size_t capacity = std::size_t(1) << 16;
+  // more than any number's shortest text (a double's takes at most 24 characters)
+  static constexpr std::size_t number_room = 64;
 
-  Text_writer& append(const char* first, const char* last)
+  template <class Number>
+  Text_writer& format(Number value)
   {
-    buffer_.append(first, last);
-    return maybe_flush();
-  }
-  Text_writer& maybe_flush()
-  {
-    if(buffer_.size() >= capacity)
+    if(capacity - size_ < number_room)
       flush();
+    char* const first = buffer_.get() + size_;
+    size_ += std::size_t(std::to_chars(first, first + number_room, value).ptr - first);
+    return *this;
+  }
+  Text_writer& append(const char* text, std::size_t length)
+  {
+    while(length > 0) {
+      if(size_ == capacity)
+        flush();
+      const std::size_t n = std::min(length, capacity - size_);
+      std::memcpy(buffer_.get() + size_, text, n);
+      size_ += n;
+      text += n;
+      length -= n;
+    }
     return *this;
   }
 
   std::ostream& out_;
-  std::string buffer_;
+  std::unique_ptr<char[]> buffer_;
+  std::size_t size_ = 0;
 };
 
 template <int D>

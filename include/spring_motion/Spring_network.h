@@ -143,7 +143,7 @@ std::vector<Index> spatial_element_order(const Spring_network<D>& net)
       lo[c] = std::min(lo[c], p[c]);
       hi[c] = std::max(hi[c], p[c]);
     }
-  std::vector<std::pair<std::uint64_t, Index>> key(m);
+  std::vector<std::uint64_t> code(m);
   const double cells = std::ldexp(1.0, bits) - 1;
   // halves and shares of coordinates, so that no sum or difference of
   // coordinates near the largest double overflows
@@ -156,12 +156,34 @@ std::vector<Index> spatial_element_order(const Spring_network<D>& net)
       const double u = hi[c] > lo[c] ? (centre / 2 - lo[c] / 2) / (hi[c] / 2 - lo[c] / 2) : 0.0;
       q[c] = std::uint32_t(std::clamp(u, 0.0, 1.0) * cells);
     }
-    key[t] = {morton_code<D>(q), Index(t)};
+    code[t] = morton_code<D>(q);
   }
-  std::sort(key.begin(), key.end());
-  std::vector<Index> order(m);
-  for(std::size_t i = 0; i < m; ++i)
-    order[i] = key[i].second;
+  // A least-significant-digit radix sort, 11 bits a pass: stable, so ties
+  // keep the elements' order. A comparison sort of (code, element) pairs
+  // took a third of the time of building the network's angle layout.
+  constexpr int digit_bits = 11;
+  constexpr std::size_t buckets = std::size_t(1) << digit_bits;
+  std::vector<Index> order(m), sorted(m);
+  std::iota(order.begin(), order.end(), Index(0));
+  std::vector<std::uint64_t> sorted_code(m);
+  std::vector<std::size_t> start(buckets);
+  for(int shift = 0; shift < 64; shift += digit_bits) {
+    std::fill(start.begin(), start.end(), 0);
+    for(std::size_t i = 0; i < m; ++i)
+      ++start[(code[i] >> shift) & (buckets - 1)];
+    if(std::find(start.begin(), start.end(), m) != start.end())
+      continue; // every code has the same digit here: the pass would change nothing
+    std::size_t sum = 0;
+    for(std::size_t& s : start)
+      sum += std::exchange(s, sum);
+    for(std::size_t i = 0; i < m; ++i) {
+      const std::size_t at = start[(code[i] >> shift) & (buckets - 1)]++;
+      sorted[at] = order[i];
+      sorted_code[at] = code[i];
+    }
+    order.swap(sorted);
+    code.swap(sorted_code);
+  }
   return order;
 }
 

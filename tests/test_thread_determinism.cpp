@@ -460,3 +460,95 @@ TEST_CASE("sorted_faces: a vertex with a long run of faces", "[threads][network]
   const auto [same, all] = faces_in_comparison_order(elements, local, fan + 1);
   CHECK(same == all);
 }
+
+// The edges, each slot's edge and its rank among the edge's slots as the
+// comparison sort of all (smaller vertex, larger vertex, slot) records gives
+// them, against number_edges.
+template <class Elements, std::size_t E>
+void check_edge_numbering(const Elements& elements, const std::array<std::array<int, 2>, E>& local,
+                          std::size_t number_of_vertices)
+{
+  std::vector<std::pair<std::array<std::uint32_t, 2>, std::uint32_t>> records;
+  for(std::size_t t = 0; t < elements.size(); ++t)
+    for(std::size_t j = 0; j < E; ++j) {
+      std::array<std::uint32_t, 2> v{std::uint32_t(elements[t][std::size_t(local[j][0])]),
+                                     std::uint32_t(elements[t][std::size_t(local[j][1])])};
+      std::sort(v.begin(), v.end());
+      records.push_back({v, std::uint32_t(t * E + j)});
+    }
+  std::sort(records.begin(), records.end());
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  std::vector<std::uint32_t> element_edges(records.size()), rank(records.size());
+  for(std::size_t r = 0, first = 0; r < records.size(); ++r) {
+    if(r == 0 || records[r].first != records[r - 1].first) {
+      edges.push_back(records[r].first);
+      first = r;
+    }
+    element_edges[records[r].second] = std::uint32_t(edges.size() - 1);
+    rank[records[r].second] = std::uint32_t(r - first);
+  }
+  std::vector<std::array<std::uint32_t, 2>> got_edges;
+  std::vector<std::uint32_t> got_element_edges, got_rank;
+  internal::number_edges(elements, local, number_of_vertices, got_edges, got_element_edges, got_rank);
+  CHECK(got_edges == edges);
+  CHECK(got_element_edges == element_edges);
+  CHECK(got_rank == rank);
+}
+
+TEST_CASE("number_edges: the numbering of a comparison sort of all the edge slots", "[threads][network]")
+{
+  auto grid3 = kuhn_grid<3>(4);
+  auto grid2 = kuhn_grid<2>(7);
+  // scattered element orders, so that each vertex's slots arrive unsorted
+  std::reverse(grid3.elements.begin(), grid3.elements.end());
+  std::rotate(grid3.elements.begin(), grid3.elements.begin() + 37, grid3.elements.end());
+  std::mt19937 rng(3);
+  std::shuffle(grid2.elements.begin(), grid2.elements.end(), rng);
+  check_edge_numbering(grid3.elements, internal::Simplex_tables<3>::edge, grid3.points.size());
+  check_edge_numbering(grid2.elements, internal::Simplex_tables<2>::edge, grid2.points.size());
+  // a fan of 300 triangles around vertex 0, its rim numbered out of order:
+  // one vertex with hundreds of neighbours
+  const std::uint32_t fan = 300;
+  std::vector<std::array<std::uint32_t, 3>> elements;
+  for(std::uint32_t i = 0; i < fan; ++i) {
+    const std::uint32_t a = 1 + (i * 7) % fan, b = 1 + ((i + 1) * 7) % fan;
+    elements.push_back(i % 2 ? std::array<std::uint32_t, 3>{a, 0, b} : std::array<std::uint32_t, 3>{b, a, 0});
+  }
+  check_edge_numbering(elements, internal::Simplex_tables<2>::edge, fan + 1);
+}
+
+// spatial_element_order against a comparison sort of (centroid code, element)
+template <int D>
+void check_spatial_order(const Spring_network<D>& net)
+{
+  const std::vector<std::uint64_t> code = internal::centroid_morton_codes(net);
+  std::vector<std::pair<std::uint64_t, Index>> key;
+  for(std::size_t t = 0; t < code.size(); ++t)
+    key.push_back({code[t], Index(t)});
+  std::sort(key.begin(), key.end());
+  std::vector<Index> expected;
+  for(const auto& k : key)
+    expected.push_back(k.second);
+  CHECK(internal::spatial_element_order(net) == expected);
+}
+
+TEST_CASE("spatial_element_order: the order of a comparison sort of (code, element)", "[network]")
+{
+  auto grid3 = kuhn_grid<3>(6);
+  std::mt19937 rng(5);
+  std::shuffle(grid3.elements.begin(), grid3.elements.end(), rng);
+  const auto net3 = make_spring_network<3>(grid3.points, grid3.elements);
+  check_spatial_order(net3);
+  auto grid2 = kuhn_grid<2>(9);
+  std::shuffle(grid2.elements.begin(), grid2.elements.end(), rng);
+  check_spatial_order(make_spring_network<2>(grid2.points, grid2.elements));
+  // codes that tie: every point in one place gives every element the code 0,
+  // and ties keep the elements' order
+  auto flat = grid3;
+  for(auto& p : flat.points)
+    p = {0.0, 0.0, 0.0};
+  const auto tied = make_spring_network<3>(flat.points, flat.elements);
+  const std::vector<std::uint64_t> codes = internal::centroid_morton_codes(tied);
+  CHECK(std::all_of(codes.begin(), codes.end(), [](std::uint64_t c) { return c == 0; }));
+  check_spatial_order(tied);
+}

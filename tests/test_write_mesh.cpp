@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -249,6 +250,36 @@ TEST_CASE("write_vtu: 2D with point and cell data", "[write_mesh][vtu]")
   const std::vector<double> types = numbers_of(cells.at("types").data());
   REQUIRE(types.size() == m);
   CHECK(std::all_of(types.begin(), types.end(), [](double t) { return t == 5; }));
+}
+
+TEST_CASE("write_vtu: each value is the shortest text of its double", "[write_mesh][vtu]")
+{
+  // whole numbers around the writer's integer shortcut, where fixed and
+  // scientific notation change places ("10000" and "1e+04" are as short),
+  // signed zeros and a few values that are not whole
+  std::vector<double> values;
+  for(int i = -12000; i <= 12000; ++i)
+    values.push_back(i);
+  for(double x : {-0.0, 0.0, 0.5, -9999.5, 9999.000000000002, 1e5, -1e5, 123456.0, 1e15, 1e22, 4.9406564584124654e-324,
+                  std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()})
+    values.push_back(x);
+  Indexed_mesh<2> mesh;
+  mesh.points = {{0, 0}, {1, 0}, {0, 1}};
+  mesh.elements.assign(values.size(), {0, 1, 2});
+  std::ostringstream out;
+  spring_motion::write_vtu(mesh, out, {}, {Data_array{"value", 1, values}});
+  const std::string text = out.str();
+  const std::size_t first = text.find('>', text.find("Name=\"value\"")) + 1;
+  std::istringstream tokens(text.substr(first, text.find("</DataArray>", first) - first));
+  std::size_t i = 0;
+  for(std::string token; tokens >> token; ++i) {
+    REQUIRE(i < values.size());
+    char expected[64];
+    const auto end = std::to_chars(expected, expected + sizeof expected, values[i]).ptr;
+    INFO("value " << i);
+    CHECK(token == std::string(expected, end));
+  }
+  CHECK(i == values.size());
 }
 
 TEST_CASE("write_vtu: 3D tetrahedra", "[write_mesh][vtu]")

@@ -140,6 +140,83 @@ std::vector<Face_record<K>> sorted_faces(const Elements& elements, const std::ar
   return records;
 }
 
+/// The edges of a mesh, numbered: `edges` gets each edge once as (a, b),
+/// a < b, in increasing order; `element_edges[t * E + j]` the number of
+/// local edge j of element t (E = local.size()); `rank` the place of that
+/// slot among its edge's slots, in increasing slot order. The same as
+/// numbering the unique records of sorted_faces<2>, without sorting them:
+/// each vertex's slots (those whose smaller vertex it is) arrive in slot
+/// order, and only its distinct neighbours, a third of its slots in a
+/// tetrahedral mesh, are sorted.
+template <std::size_t E, class Elements>
+void number_edges(const Elements& elements, const std::array<std::array<int, 2>, E>& local,
+                  std::size_t number_of_vertices, std::vector<std::array<std::uint32_t, 2>>& edges,
+                  std::vector<std::uint32_t>& element_edges, std::vector<std::uint32_t>& rank)
+{
+  const std::size_t m = elements.size();
+  SPRING_MOTION_CHECK(m <= std::numeric_limits<std::uint32_t>::max() / E,
+                      "too many elements: " << m << " (at most " << std::numeric_limits<std::uint32_t>::max() / E
+                                            << ")");
+  const std::size_t n = number_of_vertices;
+  struct Slot
+  {
+    std::uint32_t other, slot; // the larger vertex, element * E + local edge
+  };
+  const auto ends = [&](std::size_t t, std::size_t j) {
+    const auto a = std::uint32_t(elements[t][std::size_t(local[j][0])]);
+    const auto b = std::uint32_t(elements[t][std::size_t(local[j][1])]);
+    return std::array<std::uint32_t, 2>{std::min(a, b), std::max(a, b)};
+  };
+  std::vector<std::uint32_t> start(n + 1, 0); // vertex v's slots: [start[v], start[v + 1])
+  for(std::size_t t = 0; t < m; ++t)
+    for(std::size_t j = 0; j < E; ++j)
+      ++start[ends(t, j)[0] + 1];
+  for(std::size_t v = 0; v < n; ++v)
+    start[v + 1] += start[v];
+  std::vector<Slot> slots(m * E);
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for(std::size_t t = 0; t < m; ++t)
+      for(std::size_t j = 0; j < E; ++j) {
+        const auto e = ends(t, j);
+        slots[next[e[0]]++] = {e[1], std::uint32_t(t * E + j)};
+      }
+  }
+  // per neighbour w of the vertex at hand: the vertex + 1 that saw it last,
+  // the number of the edge to it and the slots of that edge met so far
+  struct Neighbour
+  {
+    std::uint32_t seen = 0, edge = 0, slots = 0;
+  };
+  std::vector<Neighbour> neighbour(n);
+  std::vector<std::uint32_t> others;
+  edges.clear();
+  element_edges.resize(m * E);
+  rank.resize(m * E);
+  for(std::size_t v = 0; v < n; ++v) {
+    const Slot* first = slots.data() + start[v];
+    const Slot* last = slots.data() + start[v + 1];
+    others.clear();
+    for(const Slot* s = first; s != last; ++s)
+      if(neighbour[s->other].seen != v + 1) {
+        neighbour[s->other].seen = std::uint32_t(v + 1);
+        others.push_back(s->other);
+      }
+    std::sort(others.begin(), others.end());
+    for(const std::uint32_t w : others) {
+      neighbour[w].edge = std::uint32_t(edges.size());
+      neighbour[w].slots = 0;
+      edges.push_back({std::uint32_t(v), w});
+    }
+    for(const Slot* s = first; s != last; ++s) {
+      Neighbour& w = neighbour[s->other];
+      element_edges[s->slot] = w.edge;
+      rank[s->slot] = w.slots++;
+    }
+  }
+  edges.shrink_to_fit(); // kept for the whole run: no spare capacity
+}
+
 } // namespace internal
 } // namespace spring_motion
 

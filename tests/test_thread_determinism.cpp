@@ -552,3 +552,58 @@ TEST_CASE("spatial_element_order: the order of a comparison sort of (code, eleme
   CHECK(std::all_of(codes.begin(), codes.end(), [](std::uint64_t c) { return c == 0; }));
   check_spatial_order(tied);
 }
+
+// The facets of exactly one element, from a comparison sort of all the
+// facets' sorted vertex triples (pairs in 2D).
+template <int D, class Elements>
+std::vector<std::array<Index, D>> facets_of_one_element(const Elements& elements)
+{
+  std::vector<std::array<Index, D>> all;
+  for(const auto& t : elements)
+    for(const auto& local : internal::Simplex_tables<D>::facet) {
+      std::array<Index, D> f;
+      for(int c = 0; c < D; ++c)
+        f[std::size_t(c)] = t[std::size_t(local[std::size_t(c)])];
+      std::sort(f.begin(), f.end());
+      all.push_back(f);
+    }
+  std::sort(all.begin(), all.end());
+  std::vector<std::array<Index, D>> once;
+  for(std::size_t r = 0; r < all.size();) {
+    std::size_t s = r;
+    while(s < all.size() && all[s] == all[r])
+      ++s;
+    if(s - r == 1)
+      once.push_back(all[r]);
+    r = s;
+  }
+  return once;
+}
+
+TEST_CASE("make_spring_network: the boundary facets are those of one element, in order", "[network]")
+{
+  std::mt19937 rng(11);
+  auto grid3 = kuhn_grid<3>(5);
+  std::shuffle(grid3.elements.begin(), grid3.elements.end(), rng);
+  const auto net3 = make_spring_network<3>(grid3.points, grid3.elements);
+  CHECK(net3.boundary_facets == facets_of_one_element<3>(grid3.elements));
+  CHECK(net3.boundary_facets.size() == 6 * 2 * 5 * 5); // two triangles per square of the cube's faces
+  auto grid2 = kuhn_grid<2>(6);
+  std::shuffle(grid2.elements.begin(), grid2.elements.end(), rng);
+  const auto net2 = make_spring_network<2>(grid2.points, grid2.elements);
+  CHECK(net2.boundary_facets == facets_of_one_element<2>(grid2.elements));
+  CHECK(net2.boundary_facets.size() == 4 * 6);
+}
+
+TEST_CASE("make_spring_network: a facet of three elements is an error", "[network][errors]")
+{
+  // three tetrahedra on the triangle (0, 1, 2), and in 2D three triangles on the edge (0, 1)
+  const std::vector<std::array<double, 3>> points3{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1}, {1, 1, 1}};
+  const std::vector<std::array<Index, 4>> tets{{0, 1, 2, 3}, {0, 2, 1, 4}, {0, 1, 2, 5}};
+  CHECK_THROWS_WITH(make_spring_network<3>(points3, tets),
+                    Catch::Contains("a facet is shared by 3 elements: the mesh is not a manifold"));
+  const std::vector<std::array<double, 2>> points2{{0, 0}, {1, 0}, {0, 1}, {0, -1}, {1, 1}};
+  const std::vector<std::array<Index, 3>> triangles{{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  CHECK_THROWS_WITH(make_spring_network<2>(points2, triangles),
+                    Catch::Contains("a facet is shared by 3 elements: the mesh is not a manifold"));
+}

@@ -253,6 +253,88 @@ void build_angle_layout(Spring_network<D>& net, const std::vector<Index>& rank)
       tab.layout_edge_ends[q][std::size_t(c)] = local[net.edges[tab.layout_edge[q]][std::size_t(c)]];
 }
 
+/// The facets of exactly one element of `net` (whose edges are numbered), in
+/// increasing order of their sorted vertices; throws `Error` for a facet of
+/// more than two. A facet (a, b, c), a < b < c, is told by a and the number
+/// of its edge (b, c): the facets are grouped by a with a counting sort and
+/// counted by edge number within a group, which gives the order of (a, b, c)
+/// since the edges are numbered in order. No sort of all the facets.
+template <int D>
+std::vector<std::array<Index, D>> boundary_facets(const Spring_network<D>& net)
+{
+  using Tables = typename Spring_network<D>::Tables;
+  constexpr std::size_t E = Spring_network<D>::edges_per_element;
+  const std::size_t m = net.elements.size(), ne = net.edges.size(), n = net.points.size();
+  const auto too_many = [](std::size_t count) {
+    SPRING_MOTION_CHECK(count <= 2, "a facet is shared by " << count
+                                        << " elements: the mesh is not a manifold simplicial complex");
+  };
+  std::vector<std::array<Index, D>> facets;
+  if constexpr(D == 2) {
+    // a facet is an edge
+    std::vector<Index> count(ne, 0);
+    for(const Index e : net.element_edges)
+      ++count[e];
+    for(std::size_t e = 0; e < ne; ++e) {
+      too_many(count[e]);
+      if(count[e] == 1)
+        facets.push_back(net.edges[e]);
+    }
+  } else {
+    // the local edge between two local vertices
+    std::array<std::array<std::size_t, 4>, 4> local_edge{};
+    for(std::size_t j = 0; j < E; ++j) {
+      local_edge[std::size_t(Tables::edge[j][0])][std::size_t(Tables::edge[j][1])] = j;
+      local_edge[std::size_t(Tables::edge[j][1])][std::size_t(Tables::edge[j][0])] = j;
+    }
+    // facet k of element t: its smallest vertex and the edge of the other two
+    const auto facet = [&](std::size_t t, std::size_t k) {
+      std::array<int, 3> l = Tables::facet[k];
+      const auto& v = net.elements[t];
+      for(int i : {1, 2})
+        if(v[std::size_t(l[std::size_t(i)])] < v[std::size_t(l[0])])
+          std::swap(l[0], l[std::size_t(i)]);
+      return std::pair<Index, Index>{
+          v[std::size_t(l[0])], net.element_edges[t * E + local_edge[std::size_t(l[1])][std::size_t(l[2])]]};
+    };
+    std::vector<Index> start(n + 1, 0); // the facets whose smallest vertex is a: [start[a], start[a + 1])
+    for(std::size_t t = 0; t < m; ++t)
+      for(std::size_t k = 0; k < 4; ++k)
+        ++start[facet(t, k).first + 1];
+    for(std::size_t v = 0; v < n; ++v)
+      start[v + 1] += start[v];
+    std::vector<Index> edge_of(4 * m); // per facet, grouped by smallest vertex
+    {
+      std::vector<Index> next(start.begin(), start.end() - 1);
+      for(std::size_t t = 0; t < m; ++t)
+        for(std::size_t k = 0; k < 4; ++k) {
+          const auto [a, e] = facet(t, k);
+          edge_of[next[a]++] = e;
+        }
+    }
+    std::vector<Index> seen(ne, 0), count(ne, 0), edges; // seen: the group + 1 that met the edge last
+    for(std::size_t a = 0; a < n; ++a) {
+      edges.clear();
+      for(Index i = start[a]; i < start[a + 1]; ++i) {
+        const Index e = edge_of[i];
+        if(seen[e] != a + 1) {
+          seen[e] = Index(a + 1);
+          count[e] = 0;
+          edges.push_back(e);
+        }
+        ++count[e];
+      }
+      std::sort(edges.begin(), edges.end());
+      for(const Index e : edges) {
+        too_many(count[e]);
+        if(count[e] == 1)
+          facets.push_back({Index(a), net.edges[e][0], net.edges[e][1]});
+      }
+    }
+  }
+  return facets;
+}
+
 } // namespace internal
 
 /// Builds the network from points and elements. Throws `Error` on
@@ -322,17 +404,7 @@ Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
   // Facets: those of exactly one element are the boundary.
   {
     using Key = std::array<Index, D>;
-    const auto recs = internal::sorted_faces<D>(net.elements, Tables::facet, n);
-    for(std::size_t r = 0; r < recs.size();) {
-      std::size_t s = r;
-      while(s < recs.size() && internal::same_face(recs[s], recs[r]))
-        ++s;
-      SPRING_MOTION_CHECK(s - r <= 2, "a facet is shared by " << (s - r)
-                                          << " elements: the mesh is not a manifold simplicial complex");
-      if(s - r == 1)
-        net.boundary_facets.push_back(recs[r].vertices);
-      r = s;
-    }
+    net.boundary_facets = internal::boundary_facets(net);
     net.on_boundary.assign(n, 0);
     for(const auto& f : net.boundary_facets)
       for(Index v : f)

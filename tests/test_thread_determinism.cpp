@@ -16,6 +16,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -398,6 +399,56 @@ TEST_CASE("morton_code: bit b of coordinate c is bit D * b + c", "[network]")
   CHECK(same3 == count);
   CHECK(internal::morton_code<3>({0x1fffff, 0x1fffff, 0x1fffff}) == 0x7fffffffffffffffULL);
   CHECK(internal::morton_code<2>({0xffffffffu, 0}) == 0x5555555555555555ULL);
+}
+
+TEST_CASE("group_slots: the order of a stable sort of the slots by key", "[network]")
+{
+  // keys skewed towards a few values, some keys never used
+  std::mt19937 rng(11);
+  const std::size_t m = 500, keys = 97;
+  std::vector<std::array<std::uint32_t, 3>> key(m);
+  for(auto& k : key)
+    for(auto& c : k)
+      c = std::uint32_t(rng() % 3 == 0 ? rng() % 5 : rng() % keys);
+  std::vector<std::uint32_t> start, values;
+  internal::group_slots<3>(
+      m, keys, [&](std::size_t t, std::size_t f) { return key[t][f]; },
+      [&](std::size_t t, std::size_t f) { return std::pair{key[t][f], std::uint32_t(t * 3 + f)}; }, start, values);
+  std::vector<std::uint32_t> expected(3 * m);
+  std::iota(expected.begin(), expected.end(), 0u);
+  std::stable_sort(expected.begin(), expected.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return key[a / 3][a % 3] < key[b / 3][b % 3]; });
+  CHECK(values == expected);
+  REQUIRE(start.size() == keys + 1);
+  std::size_t right_group = 0;
+  for(std::size_t k = 0; k < keys; ++k)
+    for(std::uint32_t i = start[k]; i < start[k + 1]; ++i)
+      right_group += key[values[i] / 3][values[i] % 3] == k;
+  CHECK(start.back() == 3 * m);
+  CHECK(right_group == 3 * m);
+}
+
+TEST_CASE("Group_counter: counts and distinct values of each group, as a map gives them", "[network]")
+{
+  std::mt19937 rng(12);
+  internal::Group_counter counter(40);
+  std::size_t wrong = 0;
+  for(int g = 0; g < 200; ++g) {
+    counter.start_group();
+    std::map<std::uint32_t, std::uint32_t> count;
+    const int size = int(rng() % 30);
+    for(int i = 0; i < size; ++i) {
+      const std::uint32_t v = std::uint32_t(rng() % 40);
+      wrong += counter.add(v) != count[v]++; // the number of v met before in this group
+    }
+    std::vector<std::uint32_t> distinct;
+    for(const auto& [v, c] : count) {
+      distinct.push_back(v);
+      wrong += counter.count(v) != c;
+    }
+    wrong += counter.sorted_distinct() != distinct;
+  }
+  CHECK(wrong == 0);
 }
 
 // How many records of sorted_faces(elements, local) stand where a

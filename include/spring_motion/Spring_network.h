@@ -297,37 +297,18 @@ std::vector<std::array<Index, D>> boundary_facets(const Spring_network<D>& net)
       return std::pair<Index, Index>{
           v[std::size_t(l[0])], net.element_edges[t * E + local_edge[std::size_t(l[1])][std::size_t(l[2])]]};
     };
-    std::vector<Index> start(n + 1, 0); // the facets whose smallest vertex is a: [start[a], start[a + 1])
-    for(std::size_t t = 0; t < m; ++t)
-      for(std::size_t k = 0; k < 4; ++k)
-        ++start[facet(t, k).first + 1];
-    for(std::size_t v = 0; v < n; ++v)
-      start[v + 1] += start[v];
-    std::vector<Index> edge_of(4 * m); // per facet, grouped by smallest vertex
-    {
-      std::vector<Index> next(start.begin(), start.end() - 1);
-      for(std::size_t t = 0; t < m; ++t)
-        for(std::size_t k = 0; k < 4; ++k) {
-          const auto [a, e] = facet(t, k);
-          edge_of[next[a]++] = e;
-        }
-    }
-    std::vector<Index> seen(ne, 0), count(ne, 0), edges; // seen: the group + 1 that met the edge last
+    // the facets' edges, grouped by their smallest vertex a: [start[a], start[a + 1])
+    std::vector<Index> start, edge_of;
+    group_slots<4>(
+        m, n, [&](std::size_t t, std::size_t k) { return facet(t, k).first; }, facet, start, edge_of);
+    Group_counter facets_of_a(ne); // per edge (b, c): the facets (a, b, c)
     for(std::size_t a = 0; a < n; ++a) {
-      edges.clear();
-      for(Index i = start[a]; i < start[a + 1]; ++i) {
-        const Index e = edge_of[i];
-        if(seen[e] != a + 1) {
-          seen[e] = Index(a + 1);
-          count[e] = 0;
-          edges.push_back(e);
-        }
-        ++count[e];
-      }
-      std::sort(edges.begin(), edges.end());
-      for(const Index e : edges) {
-        too_many(count[e]);
-        if(count[e] == 1)
+      facets_of_a.start_group();
+      for(Index i = start[a]; i < start[a + 1]; ++i)
+        facets_of_a.add(edge_of[i]);
+      for(const Index e : facets_of_a.sorted_distinct()) {
+        too_many(facets_of_a.count(e));
+        if(facets_of_a.count(e) == 1)
           facets.push_back({Index(a), net.edges[e][0], net.edges[e][1]});
       }
     }

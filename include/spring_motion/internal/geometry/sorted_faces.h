@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace spring_motion {
@@ -54,6 +55,80 @@ inline void sort_small(std::array<std::uint32_t, K>& v)
   }
 }
 
+/// The slots of `m` elements, F per element (slot t * F + f), grouped by a key
+/// below `number_of_keys`: `keyed_value(t, f)` gives a slot's key and value
+/// as a pair, `key_of(t, f)` its key alone; group k holds the values of the
+/// slots of key k, in slot order, at [start[k], start[k + 1]) of `values`.
+/// A counting sort: two passes over the slots and none of the comparisons a
+/// sort of all of them would make (on the set-up of a mesh, the key is a
+/// vertex and the groups are a few dozen slots each).
+template <std::size_t F, class Value, class Key_of, class Keyed_value>
+void group_slots(std::size_t m, std::size_t number_of_keys, const Key_of& key_of, const Keyed_value& keyed_value,
+                 std::vector<std::uint32_t>& start, std::vector<Value>& values)
+{
+  SPRING_MOTION_CHECK(m <= std::numeric_limits<std::uint32_t>::max() / F,
+                      "too many elements: " << m << " (at most " << std::numeric_limits<std::uint32_t>::max() / F
+                                            << ")");
+  start.assign(number_of_keys + 1, 0);
+  for(std::size_t t = 0; t < m; ++t)
+    for(std::size_t f = 0; f < F; ++f)
+      ++start[std::size_t(key_of(t, f)) + 1];
+  for(std::size_t k = 0; k < number_of_keys; ++k)
+    start[k + 1] += start[k];
+  values.resize(m * F);
+  std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+  for(std::size_t t = 0; t < m; ++t)
+    for(std::size_t f = 0; f < F; ++f) {
+      const auto [key, value] = keyed_value(t, f);
+      values[next[std::size_t(key)]++] = value;
+    }
+}
+
+/// How often each value below `number_of_values` occurs in one group of
+/// values at a time, and the group's distinct values. Each value keeps the
+/// number of the group that met it last, so starting a group clears
+/// nothing: a per-value table cleared for each of a mesh's vertices would
+/// cost the square of its size.
+class Group_counter
+{
+public:
+  explicit Group_counter(std::size_t number_of_values) : entry_(number_of_values) {}
+
+  void start_group()
+  {
+    ++group_;
+    distinct_.clear();
+  }
+  /// Counts one more v in this group; returns how many came before it.
+  std::uint32_t add(std::uint32_t v)
+  {
+    Entry& e = entry_[v];
+    if(e.group != group_) {
+      e.group = group_;
+      e.count = 0;
+      distinct_.push_back(v);
+    }
+    return e.count++;
+  }
+  /// How often v occurs in this group; v must have been added in it.
+  std::uint32_t count(std::uint32_t v) const { return entry_[v].count; }
+  /// This group's distinct values, in increasing order.
+  const std::vector<std::uint32_t>& sorted_distinct()
+  {
+    std::sort(distinct_.begin(), distinct_.end());
+    return distinct_;
+  }
+
+private:
+  struct Entry
+  {
+    std::uint32_t group = 0, count = 0; // group 0: none yet
+  };
+  std::vector<Entry> entry_;
+  std::vector<std::uint32_t> distinct_;
+  std::uint32_t group_ = 0;
+};
+
 /// Every local face of every element, sorted by (vertices, slot): the
 /// copies of a face shared by several elements are adjacent, in increasing
 /// element order. `local[f]` lists the local vertices of face f; every
@@ -69,37 +144,24 @@ template <int K, std::size_t F, class Elements>
 std::vector<Face_record<K>> sorted_faces(const Elements& elements, const std::array<std::array<int, K>, F>& local,
                                          std::size_t number_of_vertices)
 {
-  const std::size_t m = elements.size();
-  SPRING_MOTION_CHECK(m <= std::numeric_limits<std::uint32_t>::max() / F,
-                      "too many elements: " << m << " (at most " << std::numeric_limits<std::uint32_t>::max() / F
-                                            << ")");
-  const std::size_t n = number_of_vertices;
-  const auto face = [&](std::size_t t, std::size_t f) {
+  const auto smallest = [&](std::size_t t, std::size_t f) {
+    std::uint32_t v = std::uint32_t(elements[t][std::size_t(local[f][0])]);
+    for(int c = 1; c < K; ++c)
+      v = std::min(v, std::uint32_t(elements[t][std::size_t(local[f][std::size_t(c)])]));
+    return v;
+  };
+  const auto keyed_face = [&](std::size_t t, std::size_t f) {
     Face_record<K> r;
     for(int c = 0; c < K; ++c)
       r.vertices[std::size_t(c)] = std::uint32_t(elements[t][std::size_t(local[f][std::size_t(c)])]);
     sort_small(r.vertices);
     r.slot = std::uint32_t(t * F + f);
-    return r;
+    return std::pair{r.vertices[0], r};
   };
-  std::vector<std::uint32_t> start(n + 1, 0); // vertex v's records: [start[v], start[v + 1])
-  for(std::size_t t = 0; t < m; ++t)
-    for(std::size_t f = 0; f < F; ++f) {
-      std::uint32_t v = std::uint32_t(elements[t][std::size_t(local[f][0])]);
-      for(int c = 1; c < K; ++c)
-        v = std::min(v, std::uint32_t(elements[t][std::size_t(local[f][std::size_t(c)])]));
-      ++start[v + 1];
-    }
-  for(std::size_t v = 0; v < n; ++v)
-    start[v + 1] += start[v];
-  // placed in slot order, so each vertex's run starts sorted by slot
-  std::vector<Face_record<K>> records(m * F);
-  std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-  for(std::size_t t = 0; t < m; ++t)
-    for(std::size_t f = 0; f < F; ++f) {
-      const Face_record<K> r = face(t, f);
-      records[next[r.vertices[0]]++] = r;
-    }
+  const std::size_t n = number_of_vertices;
+  std::vector<std::uint32_t> start; // vertex v's records: [start[v], start[v + 1]), in slot order
+  std::vector<Face_record<K>> records;
+  group_slots<F>(elements.size(), n, smallest, keyed_face, start, records);
   const auto before = [](const Face_record<K>& a, const Face_record<K>& b) {
     for(std::size_t c = 1; c < std::size_t(K); ++c)
       if(a.vertices[c] != b.vertices[c])
@@ -153,66 +215,41 @@ void number_edges(const Elements& elements, const std::array<std::array<int, 2>,
                   std::size_t number_of_vertices, std::vector<std::array<std::uint32_t, 2>>& edges,
                   std::vector<std::uint32_t>& element_edges, std::vector<std::uint32_t>& rank)
 {
-  const std::size_t m = elements.size();
-  SPRING_MOTION_CHECK(m <= std::numeric_limits<std::uint32_t>::max() / E,
-                      "too many elements: " << m << " (at most " << std::numeric_limits<std::uint32_t>::max() / E
-                                            << ")");
-  const std::size_t n = number_of_vertices;
+  const std::size_t m = elements.size(), n = number_of_vertices;
   struct Slot
   {
     std::uint32_t other, slot; // the larger vertex, element * E + local edge
   };
-  const auto ends = [&](std::size_t t, std::size_t j) {
-    const auto a = std::uint32_t(elements[t][std::size_t(local[j][0])]);
-    const auto b = std::uint32_t(elements[t][std::size_t(local[j][1])]);
-    return std::array<std::uint32_t, 2>{std::min(a, b), std::max(a, b)};
+  const auto end = [&](std::size_t t, std::size_t j, std::size_t c) {
+    return std::uint32_t(elements[t][std::size_t(local[j][c])]);
   };
-  std::vector<std::uint32_t> start(n + 1, 0); // vertex v's slots: [start[v], start[v + 1])
-  for(std::size_t t = 0; t < m; ++t)
-    for(std::size_t j = 0; j < E; ++j)
-      ++start[ends(t, j)[0] + 1];
-  for(std::size_t v = 0; v < n; ++v)
-    start[v + 1] += start[v];
-  std::vector<Slot> slots(m * E);
-  {
-    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for(std::size_t t = 0; t < m; ++t)
-      for(std::size_t j = 0; j < E; ++j) {
-        const auto e = ends(t, j);
-        slots[next[e[0]]++] = {e[1], std::uint32_t(t * E + j)};
-      }
-  }
-  // per neighbour w of the vertex at hand: the vertex + 1 that saw it last,
-  // the number of the edge to it and the slots of that edge met so far
-  struct Neighbour
-  {
-    std::uint32_t seen = 0, edge = 0, slots = 0;
+  const auto smaller = [&](std::size_t t, std::size_t j) { return std::min(end(t, j, 0), end(t, j, 1)); };
+  const auto slot = [&](std::size_t t, std::size_t j) {
+    const std::uint32_t a = end(t, j, 0), b = end(t, j, 1);
+    return std::pair{std::min(a, b), Slot{std::max(a, b), std::uint32_t(t * E + j)}};
   };
-  std::vector<Neighbour> neighbour(n);
-  std::vector<std::uint32_t> others;
+  std::vector<std::uint32_t> start; // vertex v's slots: [start[v], start[v + 1]), in slot order
+  std::vector<Slot> slots;
+  group_slots<E>(m, n, smaller, slot, start, slots);
+  // the slots of the edge (v, w) in slot order give each its rank; v's
+  // distinct neighbours in increasing order give the edge numbers
+  Group_counter neighbours(n);
+  std::vector<std::uint32_t> edge_to(n); // per neighbour w of the vertex at hand
   edges.clear();
   element_edges.resize(m * E);
   rank.resize(m * E);
   for(std::size_t v = 0; v < n; ++v) {
     const Slot* first = slots.data() + start[v];
     const Slot* last = slots.data() + start[v + 1];
-    others.clear();
+    neighbours.start_group();
     for(const Slot* s = first; s != last; ++s)
-      if(neighbour[s->other].seen != v + 1) {
-        neighbour[s->other].seen = std::uint32_t(v + 1);
-        others.push_back(s->other);
-      }
-    std::sort(others.begin(), others.end());
-    for(const std::uint32_t w : others) {
-      neighbour[w].edge = std::uint32_t(edges.size());
-      neighbour[w].slots = 0;
+      rank[s->slot] = neighbours.add(s->other);
+    for(const std::uint32_t w : neighbours.sorted_distinct()) {
+      edge_to[w] = std::uint32_t(edges.size());
       edges.push_back({std::uint32_t(v), w});
     }
-    for(const Slot* s = first; s != last; ++s) {
-      Neighbour& w = neighbour[s->other];
-      element_edges[s->slot] = w.edge;
-      rank[s->slot] = w.slots++;
-    }
+    for(const Slot* s = first; s != last; ++s)
+      element_edges[s->slot] = edge_to[s->other];
   }
   edges.shrink_to_fit(); // kept for the whole run: no spare capacity
 }

@@ -154,8 +154,9 @@ TEST_CASE("read_medit: Dimension 3 with flat triangles only is 2D", "[read_mesh]
 
 TEST_CASE("read_medit: free format, comments, CRLF, byte order mark, no End", "[read_mesh][medit]")
 {
-  std::istringstream in("\xEF\xBB\xBF# comment\r\nMeshVersionFormatted 2 Dimension\r\n2 # trailing comment\r\n"
-                        "Vertices 3 0 0 1 1 0 1\r\n0 +1 1 Triangles 1 1 2 3 -4\r\n"
+  // every blank of the C locale between tokens, a comment right after a token
+  std::istringstream in("\xEF\xBB\xBF# comment\r\nMeshVersionFormatted 2 Dimension\r\n2# trailing comment\r\n"
+                        "Vertices 3 0\t0 1\v1 0\f1\r\n0 +1 1 Triangles 1 1 2 3 -4#\r\n"
                         "SomeFutureSection 2 1 2 3 4\r\n");
   const Mesh_file file = spring_motion::read_medit(in, "free.mesh");
   REQUIRE(file.dimension == 2);

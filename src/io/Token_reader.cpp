@@ -11,19 +11,12 @@
 namespace spring_motion {
 namespace io_internal {
 
-namespace {
-
-bool is_blank(char c)
-{
-  // '\r' too: files written on Windows must read the same.
-  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
-}
-
-} // namespace
-
 Token_reader::Token_reader(std::istream& in, std::string file_name)
   : Error_reporter(std::move(file_name), false), in_(in)
 {
+  // '\r' too: files written on Windows must read the same.
+  for(const char c : {' ', '\t', '\r', '\n', '\v', '\f'})
+    kind_[static_cast<unsigned char>(c)] = blank;
   // The size of what is left bounds every reserve(); streams that cannot seek
   // (pipes) simply get a fixed bound.
   const std::istream::pos_type start = in_.tellg();
@@ -58,26 +51,41 @@ bool Token_reader::read_line()
   return true;
 }
 
+void Token_reader::set_comment_character(char c)
+{
+  if(comment_ != '\0')
+    kind_[static_cast<unsigned char>(comment_)] = part_of_token;
+  comment_ = c;
+  // a blank stays a blank: comments start at a character tokens can hold
+  if(c != '\0' && kind(c) != blank)
+    kind_[static_cast<unsigned char>(c)] = comment;
+}
+
 bool Token_reader::next(std::string_view& token)
 {
+  const char* line = current_line_.data();
+  std::size_t size = current_line_.size(), p = position_;
   for(;;) {
-    while(position_ < current_line_.size() && is_blank(current_line_[position_]))
-      ++position_;
-    if(position_ < current_line_.size() && comment_ != '\0' && current_line_[position_] == comment_) {
+    while(p < size && kind(line[p]) == blank)
+      ++p;
+    if(p < size && kind(line[p]) == comment) {
       if(comment_handler_)
-        comment_handler_(std::string_view(current_line_).substr(position_ + 1), line_number_);
-      position_ = current_line_.size();
+        comment_handler_(std::string_view(current_line_).substr(p + 1), line_number_);
+      p = size;
     }
-    if(position_ < current_line_.size())
+    if(p < size)
       break;
     if(!read_line())
       return false;
+    line = current_line_.data();
+    size = current_line_.size();
+    p = position_;
   }
-  token_start_ = position_;
-  while(position_ < current_line_.size() && !is_blank(current_line_[position_])
-        && !(comment_ != '\0' && current_line_[position_] == comment_))
-    ++position_;
-  token = std::string_view(current_line_).substr(token_start_, position_ - token_start_);
+  token_start_ = p;
+  while(p < size && kind(line[p]) == part_of_token)
+    ++p;
+  position_ = p;
+  token = std::string_view(line + token_start_, p - token_start_);
   return true;
 }
 

@@ -53,7 +53,7 @@ bool Token_reader::read_line()
 
 void Token_reader::set_comment_character(char c)
 {
-  if(comment_ != '\0')
+  if(comment_ != '\0' && kind(comment_) == comment)
     kind_[static_cast<unsigned char>(comment_)] = part_of_token;
   comment_ = c;
   // a blank stays a blank: comments start at a character tokens can hold

@@ -88,7 +88,7 @@ void group_slots(std::size_t m, std::size_t number_of_keys, const Key_of& key_of
 /// values at a time, and the group's distinct values. Each value keeps the
 /// number of the group that met it last, so starting a group clears
 /// nothing: a per-value table cleared for each of a mesh's vertices would
-/// cost the square of its size.
+/// cost the square of its size. At most 2^32 - 1 groups.
 class Group_counter
 {
 public:

@@ -493,7 +493,8 @@ TEST_CASE("deform: an invalid move() is rolled back and reported", "[deform][mov
   CHECK(d.fraction() == 2.0);
 }
 
-TEST_CASE("deform: the report's smallest angles are those of the final positions", "[deform][angles]")
+TEST_CASE("deform: the report's smallest angles and each element's R are those of the final positions",
+          "[deform][angles]")
 {
   const Annulus annulus = annulus_turning_inside();
   const auto& net = annulus.net;
@@ -506,8 +507,10 @@ TEST_CASE("deform: the report's smallest angles are those of the final positions
   // law of cosines on the written positions: independent of the library's angles
   double moving = 180, all = 180;
   const auto& x = d.positions();
+  REQUIRE(r.element_skewness.size() == net.number_of_elements());
   for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
     const auto& e = net.elements[t];
+    double lo = 180, hi = 0;
     for(int k = 0; k < 3; ++k) {
       const auto& p = x[e[k]];
       const auto& q = x[e[(k + 1) % 3]];
@@ -520,8 +523,15 @@ TEST_CASE("deform: the report's smallest angles are those of the final positions
       all = std::min(all, angle);
       if(d.touches_moving(t))
         moving = std::min(moving, angle);
+      lo = std::min(lo, angle);
+      hi = std::max(hi, angle);
     }
+    // each element's R (Eq. 13) from the same angles
+    const double skewness = std::max((hi - 60) / 120, (60 - lo) / 60);
+    INFO("element " << t << ": report " << r.element_skewness[t] << ", recomputed " << skewness);
+    CHECK(std::abs(r.element_skewness[t] - skewness) < 1e-9);
   }
+  CHECK(*std::max_element(r.element_skewness.begin(), r.element_skewness.end()) == r.quality_all.max);
   INFO("report " << r.min_angle_deg_moving << " / " << r.min_angle_deg_all << ", recomputed " << moving << " / "
                  << all);
   CHECK(std::abs(r.min_angle_deg_moving - moving) < 1e-9);

@@ -90,6 +90,10 @@ struct Deform_report
   /// R at the final (last valid) state, over the elements touching the moving
   /// boundary and over all elements
   Skewness_histogram quality_moving, quality_all;
+  /// R of each element at the final state, by element number: the values of
+  /// both histograms (empty in the command line's report of a partitioned
+  /// run, whose parts number their elements each their own way)
+  std::vector<double> element_skewness;
   /// smallest angle in degrees (2D interior, 3D dihedral) at the final state,
   /// over the same two sets of elements
   double min_angle_deg_moving = std::numeric_limits<double>::quiet_NaN();

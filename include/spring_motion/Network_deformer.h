@@ -254,9 +254,10 @@ public:
     rep.final_fraction = t_;
     rep.final_angle_deg = internal::motion_angle_deg(motion, t_);
     std::vector<double> min_angle;
-    const auto r = element_skewness(net_, positions_, quality_threads(options), &min_angle);
-    rep.quality_all = skewness_histogram(r, [](std::size_t) { return true; });
-    rep.quality_moving = skewness_histogram(r, [&](std::size_t t) { return touches_moving_[t] != 0; });
+    rep.element_skewness = element_skewness(net_, positions_, quality_threads(options), &min_angle);
+    rep.quality_all = skewness_histogram(rep.element_skewness, [](std::size_t) { return true; });
+    rep.quality_moving =
+        skewness_histogram(rep.element_skewness, [&](std::size_t t) { return touches_moving_[t] != 0; });
     smallest_angles(min_angle, rep.min_angle_deg_moving, rep.min_angle_deg_all);
     std::tie(rep.min_size_ratio, rep.max_size_ratio) = size_ratio_range(quality_threads(options));
     rep.seconds_total = seconds_since(start);

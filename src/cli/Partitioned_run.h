@@ -138,7 +138,7 @@ public:
   /// final histograms over each part's counted elements (an element is
   /// counted by one part only), the elements of an invalid step by their
   /// whole-mesh numbers (on rank 0). Collective.
-  void reduce(Deform_report& rep, const Network_deformer<D>& deformer, int threads) const
+  void reduce(Deform_report& rep, const Network_deformer<D>& deformer) const
   {
     rep.vertices = counts_.vertices;
     rep.elements = counts_.elements;
@@ -150,7 +150,10 @@ public:
       lows.insert(lows.end(), {s.min_angle_deg_moving, s.min_angle_deg_all, s.min_size_ratio});
       highs.insert(highs.end(), {s.max_skewness_moving, s.max_skewness_all, s.max_size_ratio});
     }
-    std::vector<double> r = element_skewness(deformer.network(), deformer.positions(), threads);
+    // the part's final R by its own element numbers: histograms here, not
+    // passed on (the whole mesh's numbering is rank 0's)
+    std::vector<double> r = std::move(rep.element_skewness);
+    rep.element_skewness.clear();
     std::vector<char> all(r.size()), moving(r.size());
     for(std::size_t t = 0; t < r.size(); ++t) {
       all[t] = part_.counted[t];

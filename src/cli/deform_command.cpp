@@ -463,7 +463,7 @@ int run_deformer(const Deform_settings& s, Mesh_setup<D>* setup, Network_deforme
     deformer.release_step_memory();
 #ifdef SPRING_MOTION_WITH_PETSC
     if(partitioned) {
-      partitioned->reduce(report, deformer, s.options.solver.threads);
+      partitioned->reduce(report, deformer);
       MPI_Comm_size(PETSC_COMM_WORLD, &report.ranks);
       rusage usage{};
       getrusage(RUSAGE_SELF, &usage); // ru_maxrss in KiB on Linux
@@ -483,7 +483,11 @@ int run_deformer(const Deform_settings& s, Mesh_setup<D>* setup, Network_deforme
     // the last valid state closes the series, whatever --every says
     if(s.series && !report.completed && context.last_frame != report.first_invalid->step - 1)
       context.add_frame(report.first_invalid->step - 1);
-    const Mesh_state<D> final_state = state_now();
+    Mesh_state<D> final_state = state_now();
+    // the run's final R, when it numbers the elements as the written mesh
+    // does (not a partitioned run's parts)
+    if(report.element_skewness.size() == final_state.network.number_of_elements())
+      final_state.skewness = &report.element_skewness;
     std::vector<std::size_t> frames;
     for(const auto& o : s.outputs) {
       written.push_back(o.path);

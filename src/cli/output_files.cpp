@@ -93,7 +93,7 @@ template <int D>
 void state_arrays(const Mesh_setup<D>& setup, const Mesh_state<D>& state, std::vector<Data_array>& point_data,
                   std::vector<Data_array>& cell_data)
 {
-  motion_data_arrays(state.network, state.positions, state.record, point_data, cell_data);
+  motion_data_arrays(state.network, state.positions, state.record, point_data, cell_data, state.skewness);
   // per network vertex -> per file vertex (zero for a vertex no element uses)
   for(Data_array& a : point_data) {
     std::vector<double> values(setup.mesh->points.size() * std::size_t(a.components), 0.0);

@@ -46,6 +46,9 @@ struct Mesh_state
   const Spring_network<D>& network;
   const std::vector<std::array<double, D>>& positions;
   const Orientation_record& record;
+  /// R of each element at `positions` when the run has it (its final
+  /// report's), else null: computed by the writers
+  const std::vector<double>* skewness = nullptr;
 };
 
 template <int D>

@@ -9,7 +9,10 @@ M cells; every DataArray must hold exactly (number of tuples) x
 NumberOfComponents finite numbers (points: 3 components; connectivity
 (D+1) M; offsets M, increasing by D+1; types M, all T). With --arrays the
 point array 'displacement' and the cell arrays 'skewness' (in [0, 1]),
-'valid' (0 or 1) and 'label' must be present. A .pvd must be a Collection
+'valid' (0 or 1) and 'label' must be present, and each cell's skewness must
+be its R (Eq. 13) recomputed here from the written points: interior angles
+by the law of cosines (triangles), dihedral angles between face normals
+(tetrahedra). A .pvd must be a Collection
 of F DataSets with increasing timesteps, each file a valid .vtu as above.
 """
 import argparse
@@ -28,6 +31,52 @@ def numbers(array, path):
         return [float(x) for x in (array.text or "").split()]
     except ValueError:
         fail("%s: non-numeric value in DataArray %s" % (path, array.get("Name")))
+
+
+def sub(p, q):
+    return [p[0] - q[0], p[1] - q[1], p[2] - q[2]]
+
+
+def dot(u, v):
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+
+
+def cross(u, v):
+    return [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+
+
+def angle(u, v):
+    c = dot(u, v) / math.sqrt(dot(u, u) * dot(v, v))
+    return math.acos(max(-1.0, min(1.0, c)))
+
+
+def skewness(corners):
+    """R of a triangle (interior angles) or a tetrahedron (dihedral angles)."""
+    if len(corners) == 3:
+        angles = [angle(sub(corners[(k + 1) % 3], corners[k]), sub(corners[(k + 2) % 3], corners[k]))
+                  for k in range(3)]
+        ideal = math.pi / 3
+    else:
+        angles = []
+        for i in range(4):
+            for j in range(i + 1, 4):
+                # at edge e = (k, l): e x u turns the part of u across e by a
+                # right angle about e, so the angle between e x (j - k) and
+                # e x (i - k) is the one between the half-planes through j and i
+                k, l = (v for v in range(4) if v not in (i, j))
+                e = sub(corners[l], corners[k])
+                angles.append(angle(cross(e, sub(corners[j], corners[k])), cross(e, sub(corners[i], corners[k]))))
+        ideal = math.acos(1 / 3)
+    r = max((max(angles) - ideal) / (math.pi - ideal), (ideal - min(angles)) / ideal)
+    return min(1.0, max(0.0, r))
+
+
+def check_skewness(path, points, connectivity, per, written):
+    for t, r in enumerate(written):
+        corners = [points[3 * int(v):3 * int(v) + 3] for v in connectivity[per * t:per * (t + 1)]]
+        expected = skewness(corners)
+        if abs(r - expected) > 1e-7:
+            fail("%s: cell %d has skewness %r, its points give %r" % (path, t, r, expected))
 
 
 def check_vtu(path, a):
@@ -78,6 +127,7 @@ def check_vtu(path, a):
                 fail("%s: missing %s array '%s'" % (path, key[0], key[1]))
         if any(not (0 <= r <= 1) for r in found[("CellData", "skewness")]):
             fail("%s: skewness outside [0, 1]" % path)
+        check_skewness(path, p, conn, per, found[("CellData", "skewness")])
         if any(v not in (0.0, 1.0) for v in found[("CellData", "valid")]):
             fail("%s: valid is not 0 or 1" % path)
     return found

@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <omp.h>
+
 #include <boost/property_tree/ptree.hpp>
 #include <boost/property_tree/xml_parser.hpp>
 
@@ -180,6 +182,68 @@ TEST_CASE("write_medit: every double comes back bit for bit", "[write_mesh][medi
   REQUIRE(again.dimension == 2);
   CHECK(same_bits(flat.points, again.mesh_2.points));
   CHECK(again.mesh_2.element_labels == std::vector<int>{0});
+}
+
+TEST_CASE("write_vtu, write_medit: a large mesh written by a team is the file one thread writes",
+          "[write_mesh][threads]")
+{
+  // more points and cells than the library's parallel threshold (16384
+  // lines), so that both writers format blocks of lines on the team
+  constexpr std::uint32_t side = 131;
+  Indexed_mesh<2> mesh;
+  for(std::uint32_t j = 0; j < side; ++j)
+    for(std::uint32_t i = 0; i < side; ++i)
+      mesh.points.push_back({i / 7.0, j / 3.0 + 1e-9 * i});
+  for(std::uint32_t j = 0; j + 1 < side; ++j)
+    for(std::uint32_t i = 0; i + 1 < side; ++i) {
+      const std::uint32_t a = j * side + i;
+      mesh.elements.push_back({a, a + 1, a + side + 1});
+      mesh.elements.push_back({a, a + side + 1, a + side});
+      mesh.element_labels.push_back(int(j));
+      mesh.element_labels.push_back(-int(i));
+    }
+  const std::size_t n = mesh.points.size(), m = mesh.elements.size();
+  REQUIRE(m > 2 * 16384);
+  Data_array displacement{"displacement", 3, std::vector<double>(3 * n)};
+  for(std::size_t k = 0; k < 3 * n; ++k)
+    displacement.values[k] = std::sqrt(double(k)) - 1e3;
+  Data_array skewness{"skewness", 1, std::vector<double>(m)};
+  for(std::size_t t = 0; t < m; ++t)
+    skewness.values[t] = 1.0 / double(t + 3);
+
+  const int team = omp_get_max_threads();
+  const auto write = [&](int threads) {
+    omp_set_num_threads(threads);
+    std::ostringstream vtu, medit;
+    spring_motion::write_vtu(mesh, vtu, {displacement}, {skewness});
+    spring_motion::write_medit(mesh, medit);
+    omp_set_num_threads(team);
+    return std::make_pair(vtu.str(), medit.str());
+  };
+  const auto one = write(1), two = write(2);
+  CHECK(one.first == two.first);
+  CHECK(one.second == two.second);
+
+  // and every line in its place
+  std::istringstream medit(two.second);
+  const Mesh_file again = spring_motion::read_medit(medit, "large");
+  REQUIRE(again.dimension == 2);
+  CHECK(same_bits(mesh.points, again.mesh_2.points));
+  CHECK(again.mesh_2.elements == mesh.elements);
+  CHECK(again.mesh_2.element_labels == mesh.element_labels);
+  std::istringstream vtu(two.first);
+  pt::ptree tree;
+  pt::read_xml(vtu, tree);
+  const pt::ptree& piece = tree.get_child("VTKFile.UnstructuredGrid.Piece");
+  CHECK(numbers_of(data_arrays(piece.get_child("PointData")).at("displacement").data()) == displacement.values);
+  CHECK(numbers_of(data_arrays(piece.get_child("CellData")).at("skewness").data()) == skewness.values);
+  std::vector<double> points, connectivity;
+  for(const auto& p : mesh.points)
+    points.insert(points.end(), {p[0], p[1], 0.0});
+  for(const auto& e : mesh.elements)
+    connectivity.insert(connectivity.end(), e.begin(), e.end());
+  CHECK(numbers_of(piece.get_child("Points.DataArray").data()) == points);
+  CHECK(numbers_of(data_arrays(piece.get_child("Cells")).at("connectivity").data()) == connectivity);
 }
 
 TEST_CASE("write_medit: to a path, and label names as comments", "[write_mesh][medit]")

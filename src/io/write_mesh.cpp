@@ -2,6 +2,7 @@
 #include <spring_motion/io/write_mesh.h>
 
 #include <spring_motion/Error.h>
+#include <spring_motion/internal/solver/threads.h>
 
 #include "Token_reader.h"
 
@@ -15,6 +16,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -41,7 +43,9 @@ namespace fs = std::filesystem;
 class Text_writer
 {
 public:
-  explicit Text_writer(std::ostream& out) : out_(out), buffer_(new char[capacity]) {}
+  explicit Text_writer(std::ostream& out) : out_(&out), buffer_(new char[capacity]) {}
+  /// Appends to `text` instead (write_lines' blocks).
+  explicit Text_writer(std::string& text) : text_(&text), buffer_(new char[capacity]) {}
   ~Text_writer() { flush(); }
   Text_writer(const Text_writer&) = delete;
   Text_writer& operator=(const Text_writer&) = delete;
@@ -72,7 +76,10 @@ public:
 
   void flush()
   {
-    out_.write(buffer_.get(), static_cast<std::streamsize>(size_));
+    if(out_)
+      out_->write(buffer_.get(), static_cast<std::streamsize>(size_));
+    else
+      text_->append(buffer_.get(), size_);
     size_ = 0;
   }
 
@@ -104,10 +111,50 @@ private:
     return *this;
   }
 
-  std::ostream& out_;
+  std::ostream* out_ = nullptr;
+  std::string* text_ = nullptr;
   std::unique_ptr<char[]> buffer_;
   std::size_t size_ = 0;
 };
+
+// Writes lines [0, count) in order, line(writer, i) formatting line i.
+// Formatting is most of the cost of a large file (a double's shortest text
+// takes a few hundred instructions: half of a wing's VTU file went to
+// to_chars), so past the parallel threshold OpenMP's team formats blocks of
+// lines, each into a string of its own, and an ordered loop writes the
+// blocks in turn: the same bytes for any thread count.
+template <class Line>
+void write_lines(Text_writer& w, std::size_t count, const Line& line)
+{
+  constexpr std::size_t block = 4096;
+  const long blocks = long((count + block - 1) / block);
+  const int nt = internal::thread_count(0, count);
+  if(nt == 1 || blocks < 2) {
+    for(std::size_t i = 0; i < count; ++i)
+      line(w, i);
+    return;
+  }
+  // an exception must not leave the parallel region: each block keeps its
+  // own, the first is thrown after it (the caller's file is then discarded)
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(blocks));
+#pragma omp parallel for ordered schedule(static, 1) num_threads(nt)
+  for(long b = 0; b < blocks; ++b) {
+    std::string text;
+    try {
+      Text_writer out(text);
+      const std::size_t first = std::size_t(b) * block, last = std::min(count, first + block);
+      for(std::size_t i = first; i < last; ++i)
+        line(out, i);
+    } catch(...) {
+      errors[std::size_t(b)] = std::current_exception();
+    }
+#pragma omp ordered
+    w << text;
+  }
+  for(const std::exception_ptr& e : errors)
+    if(e)
+      std::rethrow_exception(e);
+}
 
 template <int D>
 void check_mesh(const Indexed_mesh<D>& mesh)
@@ -228,12 +275,13 @@ void write_vtu_data(Text_writer& w, const std::vector<Data_array>& arrays)
   for(const Data_array& a : arrays) {
     w << "        <DataArray type=\"Float64\" Name=\"" << xml_escape(a.name) << "\" NumberOfComponents=\""
       << a.components << "\" format=\"ascii\">\n";
-    for(std::size_t i = 0; i < a.values.size(); i += static_cast<std::size_t>(a.components)) {
-      w << "         ";
-      for(int c = 0; c < a.components; ++c)
-        w << ' ' << a.values[i + static_cast<std::size_t>(c)];
-      w << '\n';
-    }
+    const std::size_t m = static_cast<std::size_t>(a.components);
+    write_lines(w, a.values.size() / m, [&a, m](Text_writer& to, std::size_t i) {
+      to << "         ";
+      for(std::size_t c = 0; c < m; ++c)
+        to << ' ' << a.values[i * m + c];
+      to << '\n';
+    });
     w << "        </DataArray>\n";
   }
 }
@@ -255,19 +303,19 @@ void write_medit(const Indexed_mesh<D>& mesh, std::ostream& out)
   }
 
   w << "\nVertices\n" << mesh.points.size() << '\n';
-  for(const auto& p : mesh.points) {
+  write_lines(w, mesh.points.size(), [&mesh](Text_writer& to, std::size_t i) {
     for(int k = 0; k < D; ++k)
-      w << p[static_cast<std::size_t>(k)] << ' ';
-    w << "0\n";
-  }
+      to << mesh.points[i][static_cast<std::size_t>(k)] << ' ';
+    to << "0\n";
+  });
 
   const auto write_simplices = [&w](const char* keyword, const auto& simplices, const std::vector<int>& labels) {
     w << '\n' << keyword << '\n' << simplices.size() << '\n';
-    for(std::size_t i = 0; i < simplices.size(); ++i) {
+    write_lines(w, simplices.size(), [&simplices, &labels](Text_writer& to, std::size_t i) {
       for(std::uint32_t v : simplices[i])
-        w << (v + std::int64_t(1)) << ' ';
-      w << (labels.empty() ? 0 : labels[i]) << '\n';
-    }
+        to << (v + std::int64_t(1)) << ' ';
+      to << (labels.empty() ? 0 : labels[i]) << '\n';
+    });
   };
   write_simplices(D == 2 ? "Triangles" : "Tetrahedra", mesh.elements, mesh.element_labels);
   if(!mesh.boundary_facets.empty())
@@ -310,18 +358,20 @@ void write_vtu(const Indexed_mesh<D>& mesh, std::ostream& out, const std::vector
   w << "      <Points>\n"
        "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   // p[D - 1], not p[2]: the 2D instantiation must compile too.
-  for(const auto& p : mesh.points)
-    w << "          " << p[0] << ' ' << p[1] << ' ' << (D == 3 ? p[D - 1] : 0.0) << '\n';
+  write_lines(w, mesh.points.size(), [&mesh](Text_writer& to, std::size_t i) {
+    const auto& p = mesh.points[i];
+    to << "          " << p[0] << ' ' << p[1] << ' ' << (D == 3 ? p[D - 1] : 0.0) << '\n';
+  });
   w << "        </DataArray>\n"
        "      </Points>\n"
        "      <Cells>\n"
        "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-  for(const auto& e : mesh.elements) {
-    w << "         ";
-    for(std::uint32_t v : e)
-      w << ' ' << v;
-    w << '\n';
-  }
+  write_lines(w, mesh.elements.size(), [&mesh](Text_writer& to, std::size_t t) {
+    to << "         ";
+    for(std::uint32_t v : mesh.elements[t])
+      to << ' ' << v;
+    to << '\n';
+  });
   w << "        </DataArray>\n"
        "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
   for(std::size_t i = 0; i < mesh.elements.size(); ++i)

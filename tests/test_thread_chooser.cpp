@@ -87,6 +87,39 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
     c.record(1.0, 20);
     CHECK(team_steps(c, 1, 19, [](int) { return 3.0; }, [](int) { return 1.0; }) == 1);
   }
+  SECTION("the first step: its start on one thread, the rest on the team when that thread had a core")
+  {
+    Thread_chooser idle;
+    CHECK(idle.next(0) == 1);
+    CHECK(idle.after_setup(0.05, 0.049) == 2);
+    CHECK(idle.chosen() == 2);
+    idle.record(0.2, 20, 0.2);
+    CHECK_FALSE(idle.crowded());
+    // later steps as before: the team measured, then one thread
+    CHECK(idle.next(0) == 2);
+    CHECK(idle.after_setup(0.05, 0.05) == 2);
+    idle.record(1.0, 20, 1.0);
+    CHECK(idle.next(0) == 1);
+    CHECK(idle.after_setup(0.05, 0.05) == 1);
+
+    // two thirds of a core: the whole first step on one thread, and its
+    // share says crowded
+    Thread_chooser busy;
+    CHECK(busy.next(0) == 1);
+    CHECK(busy.after_setup(0.05, 0.034) == 1);
+    busy.record(0.3, 20, 0.2);
+    CHECK(busy.crowded());
+    CHECK(busy.next(0) == 1); // no team probe while crowded
+
+    // a start too short to tell, an unknown CPU time, a requested count
+    Thread_chooser short_start, unknown, fixed;
+    CHECK(short_start.next(0) == 1);
+    CHECK(short_start.after_setup(0.005, 0.005) == 1);
+    CHECK(unknown.next(0) == 1);
+    CHECK(unknown.after_setup(0.05, -1) == 1);
+    CHECK(fixed.next(3) == 3);
+    CHECK(fixed.after_setup(0.05, 0.05) == 3);
+  }
   SECTION("crowded cores, seen by one thread's CPU share: the team is not tried")
   {
     // the one-thread steps get 2/3 of a core: a team, which needs two free

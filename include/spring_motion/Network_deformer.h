@@ -500,7 +500,7 @@ private:
     const auto attempt_start = Clock::now();
     const double cpu_start = internal::thread_cpu_seconds();
     Solver_options solver_options = options.solver;
-    const int threads = solver_options.threads = threads_.next(options.solver.threads);
+    int threads = solver_options.threads = threads_.next(options.solver.threads);
     s.threads = threads;
     const std::size_t n = net_.number_of_vertices();
     auto t0 = Clock::now();
@@ -552,6 +552,11 @@ private:
     solver_.set_start(delta_, threads);
     solver_.set_positions(positions_);
     s.seconds_stiffness += seconds_since(t0);
+    // the first step's solve and check may go to the team (after_setup)
+    const double setup_cpu = internal::thread_cpu_seconds();
+    threads = solver_options.threads = threads_.after_setup(
+        seconds_since(attempt_start), cpu_start >= 0 && setup_cpu >= 0 ? setup_cpu - cpu_start : -1);
+    s.threads = threads;
 
     Step_system_view<D> view;
     if(system_observer || solve_override) {

@@ -27,9 +27,11 @@ namespace internal {
 /// interval starts again at 8, or at 32 when one option cost at least twice
 /// the other: a team stalled by a busy machine costs several times one
 /// thread, and each probe of it costs as much again. The first step, which
-/// also builds the solver's state and so is not measured, runs on one
-/// thread: on a busy machine a team step costs several one-thread steps, on
-/// an idle one the first step costs a little more.
+/// also builds the solver's state and so is not measured, starts on one
+/// thread: on a busy machine a team step costs several one-thread steps.
+/// Its solve, the costliest of the run (a cold start), and its check go to
+/// the team when that start (stiffness and the solver's set-up, tens of
+/// milliseconds on the wing) had a core to itself: see after_setup.
 ///
 /// One-thread steps also say whether the cores are crowded without trying
 /// the team: the share of their wall time the thread ran on a core (its CPU
@@ -68,6 +70,24 @@ public:
       probing_ = 1;
     last_ = probing_ == 0 ? thread_count(0) : 1;
     return last_;
+  }
+
+  /// The thread count for the rest of a step whose start (the stiffness and
+  /// the solver's set-up) took `seconds` of wall time and `cpu_seconds` of
+  /// the calling thread's CPU time (negative when not known). Only the first
+  /// step changes: it started on one thread, and goes on with OpenMP's team
+  /// when that thread ran at least `crowded_share` of the time, over at
+  /// least `least_sample` seconds (a shorter start says little of the load,
+  /// and its step costs little); its sample then counts as a one-thread
+  /// step's in crowded().
+  int after_setup(double seconds, double cpu_seconds)
+  {
+    if(fixed_ || warm_ || last_ != 1 || cpu_seconds < 0 || seconds < least_sample
+       || cpu_seconds < crowded_share * seconds)
+      return last_;
+    cpu_sum_ = 0.5 * cpu_sum_ + cpu_seconds;
+    wall_sum_ = 0.5 * wall_sum_ + seconds;
+    return last_ = thread_count(0);
   }
 
   /// What the step chosen by the last next() cost: its wall time, its solver
@@ -111,6 +131,9 @@ public:
   /// One-thread steps whose thread ran less than this share of their wall
   /// time (averaged) say the cores are crowded.
   static constexpr double crowded_share = 0.9;
+
+  /// The shortest start of a first step that after_setup reads, in seconds.
+  static constexpr double least_sample = 0.01;
 
   /// Whether the last one-thread steps say the cores are crowded.
   bool crowded() const { return cpu_sum_ < crowded_share * wall_sum_; }

@@ -72,6 +72,16 @@ public:
     return *this;
   }
   Text_writer& operator<<(const std::string& text) { return append(text.data(), text.size()); }
+  /// Writes `text` after what the buffer holds, without copying it through
+  /// the buffer (write_lines' blocks).
+  void write_through(const std::string& text)
+  {
+    flush();
+    if(out_)
+      out_->write(text.data(), static_cast<std::streamsize>(text.size()));
+    else
+      text_->append(text);
+  }
   Text_writer& operator<<(const char* text) { return append(text, std::strlen(text)); }
 
   void flush()
@@ -137,19 +147,28 @@ void write_lines(Text_writer& w, std::size_t count, const Line& line)
   // an exception must not leave the parallel region: each block keeps its
   // own, the first is thrown after it (the caller's file is then discarded)
   std::vector<std::exception_ptr> errors(static_cast<std::size_t>(blocks));
-#pragma omp parallel for ordered schedule(static, 1) num_threads(nt)
-  for(long b = 0; b < blocks; ++b) {
+#pragma omp parallel num_threads(nt)
+  {
+    // each thread's string and writer serve all its blocks: the string
+    // grows to a block's size once, not at every block
     std::string text;
-    try {
-      Text_writer out(text);
-      const std::size_t first = std::size_t(b) * block, last = std::min(count, first + block);
-      for(std::size_t i = first; i < last; ++i)
-        line(out, i);
-    } catch(...) {
-      errors[std::size_t(b)] = std::current_exception();
-    }
+    std::unique_ptr<Text_writer> out;
+#pragma omp for ordered schedule(static, 1)
+    for(long b = 0; b < blocks; ++b) {
+      try {
+        if(!out)
+          out = std::make_unique<Text_writer>(text);
+        text.clear();
+        const std::size_t first = std::size_t(b) * block, last = std::min(count, first + block);
+        for(std::size_t i = first; i < last; ++i)
+          line(*out, i);
+        out->flush();
+      } catch(...) {
+        errors[std::size_t(b)] = std::current_exception();
+      }
 #pragma omp ordered
-    w << text;
+      w.write_through(text);
+    }
   }
   for(const std::exception_ptr& e : errors)
     if(e)

@@ -646,3 +646,72 @@ TEST_CASE("ball-vertex: the distinct blocks the assembly reads are the element m
   CHECK_FALSE(internal::Has_symmetric_blocks<Torsional_stiffness, 2>::value);
   CHECK_FALSE(internal::Has_symmetric_blocks<Torsional_stiffness, 3>::value);
 }
+
+namespace {
+
+// Ball-vertex springs that do not say they have no edge springs: the
+// assembly then computes k = 0 on every edge and adds their zero blocks,
+// the path every model took before Edge_spring_form::none
+struct Ball_vertex_with_zero_edges : Ball_vertex_stiffness
+{
+  Edge_spring_form edge_spring_form() const { return Edge_spring_form::per_coordinate; }
+};
+
+// no edge springs and no element matrix: nothing to solve
+struct No_springs
+{
+  Angle_kind angle_kind(int) const { return Angle_kind::none; }
+  double operator()(double, const double*, std::size_t, const Stiffness_context&) const { return 0.0; }
+  Edge_spring_form edge_spring_form() const { return Edge_spring_form::none; }
+};
+
+template <int D, class Motion>
+void check_same_bits_without_edge_springs(const Spring_network<D>& net, const std::vector<Vertex_role>& roles,
+                                          const Motion& motion)
+{
+  Ball_vertex_stiffness model;
+  model.exponent = 2;
+  Ball_vertex_with_zero_edges zero_edges;
+  zero_edges.exponent = 2;
+  REQUIRE(internal::edge_spring_form(model) == Edge_spring_form::none);
+  Deform_options options;
+  options.number_of_steps = 4;
+  Network_deformer<D> skipped(net, roles), computed(net, roles);
+  const auto a = skipped.run(motion, model, options), b = computed.run(motion, zero_edges, options);
+  REQUIRE(a.completed);
+  REQUIRE(b.completed);
+  // every step's system is a new one (the blocks of the last step cleared):
+  // the same iterations and the same bits
+  for(std::size_t s = 0; s < a.steps.size(); ++s)
+    CHECK(a.steps[s].iterations == b.steps[s].iterations);
+  CHECK(skipped.positions() == computed.positions());
+  CHECK(skipped.positions() != net.points);
+}
+
+} // namespace
+
+TEST_CASE("ball-vertex springs alone: no edge stiffness computed, the same system as zero edge springs give",
+          "[deform][ball_vertex]")
+{
+  SECTION("2D NACA0012")
+  {
+    const auto n = spring_motion_test::naca0012_network();
+    check_same_bits_without_edge_springs<2>(n.network, n.roles, Pitch_motion<2>(20, {0.25, 0.0}));
+  }
+  SECTION("3D Kuhn grid, its boundary turning")
+  {
+    const Indexed_mesh<3> mesh = spring_motion_test::kuhn_grid<3>(4);
+    auto net = make_spring_network<3>(mesh.points, mesh.elements);
+    const auto roles = assign_roles(net, All_boundary_moving{});
+    check_same_bits_without_edge_springs<3>(net, roles, Pitch_motion<3>(10, {2.0, 2.0, 2.0}));
+  }
+  SECTION("a model with neither edge springs nor element matrices is refused")
+  {
+    const auto n = spring_motion_test::naca0012_network();
+    Network_deformer<2> d(n.network, n.roles);
+    Deform_options options;
+    options.number_of_steps = 1;
+    CHECK_THROWS_WITH(d.run(Pitch_motion<2>(20, {0.25, 0.0}), No_springs{}, options),
+                      Catch::Contains("has neither edge springs nor element matrices"));
+  }
+}

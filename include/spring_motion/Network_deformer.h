@@ -533,9 +533,16 @@ private:
       for(int c = 0; c < D; ++c)
         delta_[i][c] = net_.points[i][c] - positions_[i][c];
     Stiffness_context ctx{D, net_.longest_initial_edge};
-    if(model.angle_kind(D) == Angle_kind::face)
+    // a model without edge springs (ball-vertex springs alone) gives k = 0
+    // on every edge: nothing to compute
+    const bool edge_springs = internal::edge_spring_form(model) != Edge_spring_form::none;
+    SPRING_MOTION_CHECK(edge_springs || element_model, "stiffness model '"
+                                                           << internal::describe_model(model, D).name
+                                                           << "' has neither edge springs nor element matrices");
+    if(edge_springs && model.angle_kind(D) == Angle_kind::face)
       internal::build_face_slots(net_);
-    internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, stiffness_scratch_, threads);
+    if(edge_springs)
+      internal::compute_edge_stiffness(net_, positions_, model, ctx, stiffness_, stiffness_scratch_, threads);
     // sliding vertices couple the coordinates: then every model runs as a
     // block system (an edge model's k I blocks are its scalar system); so it
     // does with planes given, so that every part of a partitioned mesh runs

@@ -45,6 +45,7 @@ struct Ball_vertex_stiffness
 
   Angle_kind angle_kind(int) const { return Angle_kind::none; }
   double operator()(double, const double*, std::size_t, const Stiffness_context&) const { return 0.0; }
+  Edge_spring_form edge_spring_form() const { return Edge_spring_form::none; }
 
   /// The altitude from local vertex i of triangle p.
   static Altitude<2> altitude(const std::array<std::array<double, 2>, 3>& p, int i)

@@ -34,7 +34,12 @@ enum class Edge_spring_form
   /// k e e^T / |e|^2 with e the edge vector: a truss along the edge, which
   /// resists stretching only and is rotation invariant. What an edge model
   /// combined with ball-vertex springs uses.
-  along_edge
+  along_edge,
+  /// no edge springs at all (k = 0 on every edge; ball-vertex springs
+  /// alone): the element matrices make the whole system, and the assembly
+  /// neither computes the edges' stiffness nor adds their zero blocks. Only
+  /// for element models: an edge model's system would be empty.
+  none
 };
 
 /// What a model may need besides the edge itself: the dimension and the
@@ -123,8 +128,8 @@ struct Model_description
 /// // as its upper triangle by rows (D(D+1)/2 values), to S
 /// void add_symmetric_blocks(const std::array<std::array<double, D>, D + 1>& p, double* S) const;
 /// \endcode
-/// An element model may also say how its edge springs act in that system
-/// (default `Edge_spring_form::per_coordinate`):
+/// An element model may also say how its edge springs act in that system,
+/// or that it has none (default `Edge_spring_form::per_coordinate`):
 /// \code
 /// Edge_spring_form edge_spring_form() const;
 /// \endcode

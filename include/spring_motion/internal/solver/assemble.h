@@ -337,8 +337,8 @@ void add_element_matrices(const std::vector<typename Spring_network<D>::Point>& 
 
 /// Fills the block system `fs` (element models, or any model with sliding
 /// vertices), built for the network, with this step's values: the edge springs (k I per coordinate, or the truss
-/// k e e^T / |e|^2 along the edge, as `edge_spring_form(model)` says) row by
-/// row, then each element matrix scattered through the precomputed
+/// k e e^T / |e|^2 along the edge, as `edge_spring_form(model)` says; `k` is
+/// not read when it says none) row by row, then each element matrix scattered through the precomputed
 /// destinations; then the diagonal blocks are inverted (a singular one
 /// throws Vertex_error).
 template <int D, class Model>
@@ -346,7 +346,8 @@ void assemble_block_system(const std::vector<typename Spring_network<D>::Point>&
                            const std::vector<double>& k, Free_system<D>& fs, int threads)
 {
   constexpr int DD = D * D;
-  const bool along_edge = edge_spring_form(model) == Edge_spring_form::along_edge;
+  const Edge_spring_form form = edge_spring_form(model);
+  const bool along_edge = form == Edge_spring_form::along_edge;
   const auto& order = fs.order();
   const auto& offsets = fs.row_offsets();
   const auto& col = fs.columns();
@@ -396,6 +397,11 @@ void assemble_block_system(const std::vector<typename Spring_network<D>::Point>&
     double* diag = blocks + R * DD;
     for(int c = 0; c < DD; ++c)
       diag[c] = 0;
+    if(form == Edge_spring_form::none) { // a row's blocks lie together: cleared for the element matrices
+      std::fill(blocks + fs.off_block(offsets[R]) * DD, blocks + fs.off_block(offsets[R + 1]) * DD, 0.0);
+      std::fill(blocks + fs.bnd_block(bnd_offsets[R]) * DD, blocks + fs.bnd_block(bnd_offsets[R + 1]) * DD, 0.0);
+      continue;
+    }
     for(Index q = offsets[R]; q < offsets[R + 1]; ++q)
       spring(edge[q], i, order[col[q]], blocks + fs.off_block(q) * DD, diag);
     for(Index q = bnd_offsets[R]; q < bnd_offsets[R + 1]; ++q)

@@ -503,3 +503,64 @@ TEMPLATE_TEST_CASE_SIG("exact_orientation: the floating-point filter gives only 
     }
   }
 }
+
+namespace {
+
+// The check the deformer runs on every attempt, in the elements' spatial
+// traversal: the same verdict as find_inverted_elements in element order.
+template <int D>
+void check_traversal_verdicts(int n, int trials)
+{
+  const Indexed_mesh<D> mesh = kuhn_grid<D>(n);
+  const auto net = make_spring_network<D>(mesh.points, mesh.elements);
+  const auto rec = record_orientations(net, net.points);
+  const auto& slots = internal::angle_slots(net);
+  // the traversal's elements are the network's, vertex order kept: each one's
+  // recorded sign, found by its vertices
+  std::map<std::array<Index, D + 1>, int> sign_of;
+  for(std::size_t t = 0; t < net.number_of_elements(); ++t)
+    sign_of[net.elements[t]] = rec.sign[t];
+  std::vector<std::array<double, D>> xt;
+  internal::copy_in_traversal_order<D>(slots, net.points, xt, 1);
+  const auto sign = internal::traversal_orientations<D>(slots, xt, 2);
+  REQUIRE(sign.size() == net.number_of_elements());
+  for(std::size_t i = 0; i < sign.size(); ++i) {
+    std::array<Index, D + 1> e;
+    for(int k = 0; k <= D; ++k)
+      e[std::size_t(k)] = slots.traversal_vertices[slots.ordered_elements[i * (D + 1) + std::size_t(k)]];
+    REQUIRE(sign_of.count(e) == 1);
+    CHECK(sign[i] == sign_of[e]);
+  }
+  // one vertex moved at random, by up to two cells, or onto a neighbour
+  // (flat elements): some attempts invert elements, some do not
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  int inverted = 0, valid = 0;
+  for(int trial = 0; trial < trials; ++trial) {
+    auto x = net.points;
+    const Index v = Index(rng() % x.size());
+    if(trial % 5 == 0)
+      x[v] = x[net.adjacency[net.adjacency_offsets[v]]];
+    else
+      for(int c = 0; c < D; ++c)
+        x[v][c] += u(rng);
+    std::vector<std::size_t> found;
+    find_inverted_elements(net, x, rec, std::back_inserter(found));
+    for(int threads : {1, 2}) {
+      internal::copy_in_traversal_order<D>(slots, x, xt, threads);
+      CHECK(internal::orientation_changed<D>(slots, xt, sign, threads) == !found.empty());
+    }
+    (found.empty() ? valid : inverted) += 1;
+  }
+  CHECK(inverted > trials / 4);
+  CHECK(valid > trials / 10);
+}
+
+} // namespace
+
+TEST_CASE("traversal check: the deformer's check in the spatial traversal agrees with find_inverted_elements",
+          "[validity]")
+{
+  check_traversal_verdicts<2>(12, 200);
+  check_traversal_verdicts<3>(5, 200);
+}

@@ -16,6 +16,7 @@
 #include <spring_motion/internal/solver/free_system.h>
 #include <spring_motion/internal/solver/thread_chooser.h>
 #include <spring_motion/internal/solver/threads.h>
+#include <spring_motion/internal/solver/traversal_check.h>
 #include <spring_motion/internal/solver/warm_start.h>
 #include <spring_motion/motion/Motion_description.h>
 #include <spring_motion/skewness.h>
@@ -192,6 +193,7 @@ public:
   {
     std::vector<double>().swap(stiffness_);
     stiffness_scratch_.release();
+    std::vector<signed char>().swap(traversal_sign_);
     solver_ = internal::Free_system<D>();
     for(std::vector<Point>* v : {&delta_, &candidate_, &moving_targets_, &outside_solution_})
       std::vector<Point>().swap(*v);
@@ -607,7 +609,16 @@ private:
     for(const auto& sv : sliding_.vertices)
       internal::snap_to_planes<D>(sv, net_.points[sv.vertex], candidate_[sv.vertex]);
     failed.inverted.clear();
-    find_inverted_elements(net_, candidate_, record_, std::back_inserter(failed.inverted), threads);
+    // in the elements' spatial traversal (traversal_check.h); the elements
+    // that failed are listed in element order only when some did
+    const internal::Angle_slots& slots = internal::angle_slots(net_);
+    if(traversal_sign_.empty()) {
+      internal::copy_in_traversal_order<D>(slots, net_.points, stiffness_scratch_.points, threads);
+      traversal_sign_ = internal::traversal_orientations<D>(slots, stiffness_scratch_.points, threads);
+    }
+    internal::copy_in_traversal_order<D>(slots, candidate_, stiffness_scratch_.points, threads);
+    if(internal::orientation_changed<D>(slots, stiffness_scratch_.points, traversal_sign_, threads))
+      find_inverted_elements(net_, candidate_, record_, std::back_inserter(failed.inverted), threads);
     s.seconds_check += seconds_since(t0);
     const double wall = seconds_since(attempt_start), cpu_end = internal::thread_cpu_seconds();
     threads_.record(wall, sr.iterations, cpu_start >= 0 && cpu_end >= 0 ? cpu_end - cpu_start : -1);
@@ -649,6 +660,9 @@ private:
     std::size_t count = 0;
   } history_;
   Orientation_record record_;
+  // the initial orientations in the elements' spatial traversal (the check's
+  // order; made at the first check)
+  std::vector<signed char> traversal_sign_;
   std::vector<double> initial_measure_;
   // scaled_measure(): coordinates times 2^measure_exponent_ (measure_scale_ when that is normal, else 0)
   int measure_exponent_ = 0;

@@ -1,0 +1,80 @@
+// Copyright (c) 2026 SpringMotion developers.
+#ifndef SPRING_MOTION_INTERNAL_SOLVER_TRAVERSAL_CHECK_H
+#define SPRING_MOTION_INTERNAL_SOLVER_TRAVERSAL_CHECK_H
+
+#include <spring_motion/internal/geometry/exact_orientation.h>
+#include <spring_motion/internal/solver/angle_slots.h>
+#include <spring_motion/internal/solver/threads.h>
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace spring_motion {
+namespace internal {
+
+// The exact check of a step in the elements' spatial traversal (Angle_slots):
+// positions copied in the traversal's vertex order, then each element's
+// orientation against its initial one, recorded in the traversal's element
+// order. In the file's order (find_inverted_elements) the vertices of
+// consecutive elements lie far apart in the positions, and on the wing the
+// check waited on those misses; here both the positions read and the signs
+// compared stay close together.
+
+/// xt[v] = x[slots.traversal_vertices[v]]
+template <int D>
+void copy_in_traversal_order(const Angle_slots& slots, const std::vector<std::array<double, D>>& x,
+                             std::vector<std::array<double, D>>& xt, int threads)
+{
+  const long nt = long(slots.traversal_vertices.size());
+  xt.resize(std::size_t(nt));
+#pragma omp parallel for schedule(static) num_threads(heavy_thread_count(threads, std::size_t(nt)))
+  for(long v = 0; v < nt; ++v)
+    xt[std::size_t(v)] = x[slots.traversal_vertices[std::size_t(v)]];
+}
+
+template <int D>
+std::array<std::array<double, D>, D + 1> traversal_element_points(const Angle_slots& slots,
+                                                                  const std::vector<std::array<double, D>>& xt,
+                                                                  std::size_t i)
+{
+  std::array<std::array<double, D>, D + 1> p;
+  for(int k = 0; k <= D; ++k)
+    p[std::size_t(k)] = xt[slots.ordered_elements[i * (D + 1) + std::size_t(k)]];
+  return p;
+}
+
+/// Every element's exact orientation (+1, -1, 0 when flat), in the
+/// traversal's element order, at positions xt (copy_in_traversal_order).
+template <int D>
+std::vector<signed char> traversal_orientations(const Angle_slots& slots, const std::vector<std::array<double, D>>& xt,
+                                                int threads)
+{
+  const long m = long(slots.ordered_elements.size() / (D + 1));
+  std::vector<signed char> sign(static_cast<std::size_t>(m));
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads, std::size_t(m)))
+  for(long i = 0; i < m; ++i)
+    sign[std::size_t(i)] =
+        static_cast<signed char>(exact_orientation(traversal_element_points<D>(slots, xt, std::size_t(i))));
+  return sign;
+}
+
+/// Whether some element's exact orientation at positions xt differs from
+/// `sign` (traversal_orientations of the initial positions).
+template <int D>
+bool orientation_changed(const Angle_slots& slots, const std::vector<std::array<double, D>>& xt,
+                         const std::vector<signed char>& sign, int threads)
+{
+  const long m = long(sign.size());
+  bool changed = false;
+  // thread-safe: the filtered predicates keep their rounding-mode state per call
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads, std::size_t(m))) reduction(|| : changed)
+  for(long i = 0; i < m; ++i)
+    changed = changed || exact_orientation(traversal_element_points<D>(slots, xt, std::size_t(i))) != sign[std::size_t(i)];
+  return changed;
+}
+
+} // namespace internal
+} // namespace spring_motion
+
+#endif

@@ -70,7 +70,8 @@ bool orientation_changed(const Angle_slots& slots, const std::vector<std::array<
   // thread-safe: the filtered predicates keep their rounding-mode state per call
 #pragma omp parallel for schedule(static) num_threads(thread_count(threads, std::size_t(m))) reduction(|| : changed)
   for(long i = 0; i < m; ++i)
-    changed = changed || exact_orientation(traversal_element_points<D>(slots, xt, std::size_t(i))) != sign[std::size_t(i)];
+    changed = changed ||
+              exact_orientation(traversal_element_points<D>(slots, xt, std::size_t(i))) != sign[std::size_t(i)];
   return changed;
 }
 

@@ -2,7 +2,10 @@
 #ifndef SPRING_MOTION_INTERNAL_SOLVER_ANGLE_SLOTS_H
 #define SPRING_MOTION_INTERNAL_SOLVER_ANGLE_SLOTS_H
 
+#include <spring_motion/internal/solver/threads.h>
+
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -66,6 +69,31 @@ template <int D>
 const Angle_slots& angle_slots(const Spring_network<D>& net)
 {
   return Network_access::slots(net);
+}
+
+/// Positions in the traversal's vertex order: xt[v] = x[slots.traversal_vertices[v]]
+/// (the stiffness and the exact check read them so).
+template <int D>
+void copy_in_traversal_order(const Angle_slots& slots, const std::vector<std::array<double, D>>& x,
+                             std::vector<std::array<double, D>>& xt, int threads)
+{
+  const long nt = long(slots.traversal_vertices.size());
+  xt.resize(std::size_t(nt));
+#pragma omp parallel for schedule(static) num_threads(heavy_thread_count(threads, std::size_t(nt)))
+  for(long v = 0; v < nt; ++v)
+    xt[std::size_t(v)] = x[slots.traversal_vertices[std::size_t(v)]];
+}
+
+/// The corners of the traversal's i-th element, read from xt (copy_in_traversal_order).
+template <int D>
+std::array<std::array<double, D>, D + 1> traversal_element_points(const Angle_slots& slots,
+                                                                  const std::vector<std::array<double, D>>& xt,
+                                                                  std::size_t i)
+{
+  std::array<std::array<double, D>, D + 1> p;
+  for(int k = 0; k <= D; ++k)
+    p[std::size_t(k)] = xt[slots.ordered_elements[i * (D + 1) + std::size_t(k)]];
+  return p;
 }
 
 } // namespace internal

@@ -94,17 +94,11 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   constexpr std::size_t padding = (D == 3 && sines) ? Inverse_sin_squared::padded_size : 0;
   auto& xt = scratch.points;
   if(by_layout) {
-    const long nt = long(slots.traversal_vertices.size());
-    xt.resize(std::size_t(nt));
-#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(nt)))
-    for(long v = 0; v < nt; ++v)
-      xt[std::size_t(v)] = x[slots.traversal_vertices[std::size_t(v)]];
+    copy_in_traversal_order<D>(slots, x, xt, threads);
     angles.resize(std::size_t(m) * E + padding);
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
     for(long i = 0; i < m; ++i) {
-      std::array<std::array<double, D>, D + 1> p;
-      for(int v = 0; v <= D; ++v)
-        p[std::size_t(v)] = xt[slots.ordered_elements[std::size_t(i) * (D + 1) + std::size_t(v)]];
+      const auto p = traversal_element_points<D>(slots, xt, std::size_t(i));
       std::array<double, E> a;
       if constexpr(sines)
         a = element_edge_inverse_sin_squared<D>(p);

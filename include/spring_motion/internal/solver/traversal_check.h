@@ -19,30 +19,8 @@ namespace internal {
 // order. In the file's order (find_inverted_elements) the vertices of
 // consecutive elements lie far apart in the positions, and on the wing the
 // check waited on those misses; here both the positions read and the signs
-// compared stay close together.
-
-/// xt[v] = x[slots.traversal_vertices[v]]
-template <int D>
-void copy_in_traversal_order(const Angle_slots& slots, const std::vector<std::array<double, D>>& x,
-                             std::vector<std::array<double, D>>& xt, int threads)
-{
-  const long nt = long(slots.traversal_vertices.size());
-  xt.resize(std::size_t(nt));
-#pragma omp parallel for schedule(static) num_threads(heavy_thread_count(threads, std::size_t(nt)))
-  for(long v = 0; v < nt; ++v)
-    xt[std::size_t(v)] = x[slots.traversal_vertices[std::size_t(v)]];
-}
-
-template <int D>
-std::array<std::array<double, D>, D + 1> traversal_element_points(const Angle_slots& slots,
-                                                                  const std::vector<std::array<double, D>>& xt,
-                                                                  std::size_t i)
-{
-  std::array<std::array<double, D>, D + 1> p;
-  for(int k = 0; k <= D; ++k)
-    p[std::size_t(k)] = xt[slots.ordered_elements[i * (D + 1) + std::size_t(k)]];
-  return p;
-}
+// compared stay close together (the positions copied by
+// copy_in_traversal_order, angle_slots.h).
 
 /// Every element's exact orientation (+1, -1, 0 when flat), in the
 /// traversal's element order, at positions xt (copy_in_traversal_order).

@@ -55,9 +55,10 @@ struct Angles_only
   }
 };
 
-// The unit cube in six tetrahedra around its diagonal 0-7, its corners
-// moved at random by up to 0.15 (vertex i at the bits of i).
-Spring_network<3> perturbed_cube(unsigned seed)
+// The unit cube in six tetrahedra around its diagonal 0-7 (the first
+// `count` of them), its corners moved at random by up to 0.15 (vertex i at
+// the bits of i).
+Spring_network<3> perturbed_cube(unsigned seed, std::size_t count = 6)
 {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> d(-0.15, 0.15);
@@ -68,6 +69,7 @@ Spring_network<3> perturbed_cube(unsigned seed)
   const int axes[6][3] = {{1, 2, 4}, {1, 4, 2}, {2, 1, 4}, {2, 4, 1}, {4, 1, 2}, {4, 2, 1}};
   for(const auto& a : axes)
     tets.push_back({0, Index(a[0]), Index(a[0] + a[1]), 7});
+  tets.resize(count);
   return internal::with_face_slots(make_spring_network<3>(p, tets)); // face-angle models read them
 }
 
@@ -171,14 +173,50 @@ TEST_CASE("inverse sin^2: scale-free from 1e-150 to 1e150, slivers, flat and col
     CHECK(v == 1e200);
 }
 
+TEST_CASE("inverse sin^2: two tetrahedra at once give each one's values bitwise", "[stiffness][angles]")
+{
+  // random shapes at every scale, slivers, and the degenerate cases: flat,
+  // a collapsed edge, a point, one huge and one tiny corner offset
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> d(-1, 1), scale(-150, 150);
+  std::vector<std::array<P3, 4>> tets;
+  for(int n = 0; n < 300; ++n) {
+    const double s = std::pow(10.0, n % 3 == 0 ? scale(rng) : 0.0);
+    std::array<P3, 4> p;
+    for(auto& q : p)
+      q = {s * d(rng), s * d(rng), s * d(rng)};
+    tets.push_back(p);
+  }
+  for(double h : {1e-4, 1e-9, 0.0})
+    tets.push_back({{{0, 0, 0}, {1, 0, h}, {1, 1, 0}, {0, 1, h}}});
+  tets.push_back({{{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 1}}});
+  tets.push_back({{{2, 2, 2}, {2, 2, 2}, {2, 2, 2}, {2, 2, 2}}});
+  tets.push_back({{{0, 0, 0}, {1e150, 0, 0}, {0, 1e-150, 0}, {0, 0, 1}}});
+  const auto corners = [](const std::array<P3, 4>& p) {
+    return std::array<const double*, 4>{p[0].data(), p[1].data(), p[2].data(), p[3].data()};
+  };
+  const auto same = [](const std::array<double, 6>& a, const std::array<double, 6>& b) {
+    return std::memcmp(a.data(), b.data(), sizeof a) == 0;
+  };
+  std::uniform_int_distribution<std::size_t> any(0, tets.size() - 1);
+  for(std::size_t i = 0; i < tets.size(); ++i) {
+    const std::size_t j = i % 4 == 0 ? i : any(rng); // a tetrahedron with itself too
+    INFO("tetrahedra " << i << " and " << j);
+    const auto both = dihedral_inverse_sin_squared(corners(tets[i]), corners(tets[j]));
+    CHECK(same(both[0], dihedral_inverse_sin_squared(tets[i])));
+    CHECK(same(both[1], dihedral_inverse_sin_squared(tets[j])));
+  }
+}
+
 TEST_CASE("inverse sin^2: the models that read it give the stiffness of their angle form", "[stiffness][angles]")
 {
   static_assert(Reads_inverse_sin_squared<Grid_scaled_stiffness>::value, "");
   static_assert(Reads_inverse_sin_squared<Zeng_Ethier_semi_torsional_stiffness>::value, "");
   static_assert(Reads_inverse_sin_squared<With_ball_vertex<Grid_scaled_stiffness>>::value, "");
   static_assert(!Reads_inverse_sin_squared<Angles_only<Grid_scaled_stiffness>>::value, "");
-  for(unsigned seed : {1u, 2u, 3u}) {
-    const auto net = perturbed_cube(seed);
+  // five tetrahedra: the stiffness pass takes them in pairs, the last alone
+  for(unsigned seed : {1u, 2u, 3u, 4u}) {
+    const auto net = perturbed_cube(seed, seed == 4 ? 5 : 6);
     const auto check = [&](const auto& model, double rel) {
       const auto fast = stiffness(net, model);
       const auto ref = stiffness(net, Angles_only<std::decay_t<decltype(model)>>{model});

@@ -96,16 +96,35 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   if(by_layout) {
     copy_in_traversal_order<D>(slots, x, xt, threads);
     angles.resize(std::size_t(m) * E + padding);
+    if constexpr(D == 3 && sines) {
+      // two tetrahedra at once (double_pair.h); an odd last one is paired
+      // with itself
+      const long pairs = (m + 1) / 2;
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
-    for(long i = 0; i < m; ++i) {
-      const auto p = traversal_element_points<D>(slots, xt, std::size_t(i));
-      std::array<double, E> a;
-      if constexpr(sines)
-        a = element_edge_inverse_sin_squared<D>(p);
-      else
-        a = element_edge_angles<D>(p);
-      for(int j = 0; j < E; ++j)
-        angles[slots.slot_position[std::size_t(i) * E + std::size_t(j)]] = a[std::size_t(j)];
+      for(long h = 0; h < pairs; ++h) {
+        const std::size_t i = 2 * std::size_t(h), j = std::min(i + 1, std::size_t(m) - 1);
+        const auto corners = [&](std::size_t t) {
+          const auto* v = &slots.ordered_elements[4 * t];
+          return std::array<const double*, 4>{xt[v[0]].data(), xt[v[1]].data(), xt[v[2]].data(), xt[v[3]].data()};
+        };
+        const auto a = dihedral_inverse_sin_squared(corners(i), corners(j));
+        for(std::size_t q = 0; q < 6; ++q)
+          angles[slots.slot_position[i * 6 + q]] = a[0][q];
+        for(std::size_t q = 0; q < 6; ++q)
+          angles[slots.slot_position[j * 6 + q]] = a[1][q];
+      }
+    } else {
+#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
+      for(long i = 0; i < m; ++i) {
+        const auto p = traversal_element_points<D>(slots, xt, std::size_t(i));
+        std::array<double, E> a;
+        if constexpr(sines)
+          a = element_edge_inverse_sin_squared<D>(p);
+        else
+          a = element_edge_angles<D>(p);
+        for(int j = 0; j < E; ++j)
+          angles[slots.slot_position[std::size_t(i) * E + std::size_t(j)]] = a[std::size_t(j)];
+      }
     }
   } else if(by_face) {
     if constexpr(D == 3) {

@@ -6,6 +6,7 @@
 // the expected behaviour of a tiny mesh. docs/reliability.md lists what
 // each model does at zero-length edges and at angles of 0 and pi.
 #include <spring_motion/spring_motion.h>
+#include <spring_motion/internal/geometry/angles.h>
 #include <spring_motion/stiffness/model_by_name.h>
 
 #include "test_meshes.h"
@@ -216,4 +217,32 @@ TEST_CASE("fp traps: models at angles of 0 and pi and at extreme lengths", "[fp]
             CHECK(k >= 0);
             CHECK(k <= internal::max_stiffness);
           }
+}
+
+TEST_CASE("fp traps: the tetrahedra's 1/sin^2, one and two at once, on flat and point-like elements", "[fp]")
+{
+  // Two at once, a vector computes both sides of every choice in each
+  // lane: a flat element's quotient or a point's 1/extent would divide by
+  // zero there if not guarded.
+  Fp_traps traps;
+  REQUIRE((fegetexcept() & trapped) == trapped);
+  using T = std::array<std::array<double, 3>, 4>;
+  const T shapes[] = {{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}},  // regular corner
+                      {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}},  // flat
+                      {{{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 1}}},  // a collapsed edge
+                      {{{2, 2, 2}, {2, 2, 2}, {2, 2, 2}, {2, 2, 2}}},  // a point
+                      {{{0, 0, 0}, {1, 0, 1e-9}, {1, 1, 0}, {0, 1, 1e-9}}}}; // a sliver
+  const auto corners = [](const T& p) {
+    return std::array<const double*, 4>{p[0].data(), p[1].data(), p[2].data(), p[3].data()};
+  };
+  for(const auto& a : shapes)
+    for(const auto& b : shapes) {
+      const auto both = internal::dihedral_inverse_sin_squared(corners(a), corners(b));
+      const auto one = internal::dihedral_inverse_sin_squared(a);
+      for(std::size_t k = 0; k < 6; ++k) {
+        CHECK(both[0][k] == one[k]);
+        CHECK(both[0][k] >= 1);
+        CHECK(both[0][k] <= 1e200);
+      }
+    }
 }

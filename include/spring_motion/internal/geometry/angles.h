@@ -426,9 +426,12 @@ inline void dihedral_inverse_sin_squared_lanes(const T (&c)[12], T (&out)[6])
   T extent = lane_abs(ax);
   for(const T v : {ay, az, bx, by, bz, cx, cy, cz})
     extent = extent < lane_abs(v) ? lane_abs(v) : extent;
-  // a point-like tetrahedron (extent 0) gives the cap at every edge, below
+  // A point-like tetrahedron (extent 0) gives the cap at every edge, below.
+  // A vector computes both sides of each choice in every lane, so its
+  // divisors are replaced where the choice discards the quotient: no lane
+  // divides by zero, and a run with floating-point traps on stays quiet.
   const auto point_like = extent == lanes_of<T>(0);
-  const T inv = lanes_of<T>(1.0) / extent;
+  const T inv = lanes_of<T>(1.0) / (point_like ? lanes_of<T>(1.0) : extent);
   ax *= inv, ay *= inv, az *= inv;
   bx *= inv, by *= inv, bz *= inv;
   cx *= inv, cy *= inv, cz *= inv;
@@ -458,7 +461,8 @@ inline void dihedral_inverse_sin_squared_lanes(const T (&c)[12], T (&out)[6])
   const T cap = lanes_of<T>(1e200);
   for(int k = 0; k < 6; ++k) {
     const T num = det2 * l2[k];
-    out[k] = ((den[k] > 0) & (num > 1e-200 * den[k]) & !point_like) ? den[k] / num : cap;
+    const auto finite = (den[k] > 0) & (num > 1e-200 * den[k]) & !point_like;
+    out[k] = finite ? den[k] / (finite ? num : lanes_of<T>(1.0)) : cap;
   }
 }
 

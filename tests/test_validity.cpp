@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <random>
 #include <vector>
@@ -563,4 +564,89 @@ TEST_CASE("traversal check: the deformer's check in the spatial traversal agrees
 {
   check_traversal_verdicts<2>(12, 200);
   check_traversal_verdicts<3>(5, 200);
+}
+
+TEST_CASE("traversal check: three separate tetrahedra, each flipped alone, two at a time or the last alone",
+          "[validity]")
+{
+  // the check takes the traversal's tetrahedra in pairs and an odd last one
+  // alone: whichever element is flipped, the verdict must see it
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<Index, 4>> tets;
+  for(int t = 0; t < 3; ++t) {
+    const double x = 3.0 * t;
+    for(const auto& p : {std::array<double, 3>{x, 0, 0}, {x + 1, 0, 0}, {x, 1, 0}, {x, 0, 1}})
+      points.push_back(p);
+    tets.push_back({Index(4 * t), Index(4 * t + 1), Index(4 * t + 2), Index(4 * t + 3)});
+  }
+  const auto net = make_spring_network<3>(points, tets);
+  const auto& slots = internal::angle_slots(net);
+  std::vector<std::array<double, 3>> xt;
+  internal::copy_in_traversal_order<3>(slots, net.points, xt, 1);
+  const auto sign = internal::traversal_orientations<3>(slots, xt, 1);
+  for(int threads : {1, 2})
+    CHECK_FALSE(internal::orientation_changed<3>(slots, xt, sign, threads));
+  for(int t = 0; t < 3; ++t)
+    for(double z : {-1.0, 0.0}) { // through its base, or onto it (flat)
+      auto x = net.points;
+      x[std::size_t(4 * t + 3)][2] = z;
+      internal::copy_in_traversal_order<3>(slots, x, xt, 1);
+      for(int threads : {1, 2}) {
+        INFO("tetrahedron " << t << " apex at z = " << z << ", " << threads << " threads");
+        CHECK(internal::orientation_changed<3>(slots, xt, sign, threads));
+      }
+    }
+}
+
+TEST_CASE("coarse_orientations: two tetrahedra's first-stage signs are filtered_orientation's", "[validity][orientation]")
+{
+  std::mt19937_64 rng(20261130);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  using T = std::array<std::array<double, 3>, 4>;
+  std::vector<T> tets;
+  std::vector<int> kind; // 0, 5: random; 1, 2: nearly flat; 3: huge or tiny; 4: NaN or infinite
+  for(int n = 0; n < 3000; ++n) {
+    T p;
+    for(auto& q : p)
+      for(auto& c : q)
+        c = coordinate(rng);
+    kind.push_back(n % 6);
+    if(kind.back() == 1)
+      p = nearly_flat<3>(rng, 1.0);
+    else if(kind.back() == 2)
+      p = nearly_flat<3>(rng, 1000.0);
+    else if(kind.back() == 3)
+      p = scaled<3>(p, (n / 6) % 2 == 0 ? 0x1p+400 : 0x1p-600); // beyond the filter's range, or tiny
+    else if(kind.back() == 4)
+      p[std::size_t(n % 4)][0] = (n / 6) % 2 == 0 ? std::numeric_limits<double>::infinity() : std::nan("");
+    tets.push_back(p);
+  }
+  const auto corners = [](const T& p) {
+    return std::array<const double*, 4>{p[0].data(), p[1].data(), p[2].data(), p[3].data()};
+  };
+  const auto random = [&](std::size_t t) { return kind[t] == 0 || kind[t] == 5; };
+  std::size_t decided = 0, random_pairs = 0, random_undecided = 0;
+  for(std::size_t i = 0; i < tets.size(); ++i)
+    for(const std::size_t j : {i, (i * 7919 + 13) % tets.size()}) {
+      const auto s = internal::coarse_orientations(corners(tets[i]), corners(tets[j]));
+      for(std::size_t k = 0; k < 2; ++k) {
+        const std::size_t t = k == 0 ? i : j;
+        INFO("tetrahedra " << i << " and " << j << ", lane " << k);
+        if(s[k] != 0) {
+          CHECK(s[k] == internal::filtered_orientation(tets[t]));
+          ++decided;
+        }
+        if(random(i) && random(j)) {
+          ++random_pairs;
+          random_undecided += s[k] == 0;
+        }
+      }
+      if(kind[i] == 4 || kind[j] == 4 || (kind[i] == 3 && (i / 6) % 2 == 0))
+        CHECK(s == std::array<int, 2>{0, 0}); // NaN, infinity or 2^400 in a lane: both to the scalar filter
+    }
+  // the first stage decides most elements, and random ones almost always
+  INFO(decided << " decided; random pairs: " << random_undecided << " of " << random_pairs << " undecided");
+  CHECK(decided > tets.size());
+  CHECK(random_pairs > 1000);
+  CHECK(random_undecided * 100 < random_pairs);
 }

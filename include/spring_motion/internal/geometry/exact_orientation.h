@@ -2,6 +2,8 @@
 #ifndef SPRING_MOTION_INTERNAL_GEOMETRY_EXACT_ORIENTATION_H
 #define SPRING_MOTION_INTERNAL_GEOMETRY_EXACT_ORIENTATION_H
 
+#include <spring_motion/internal/geometry/double_pair.h>
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
@@ -68,6 +70,41 @@ inline int filtered_orientation(const std::array<std::array<double, 3>, 4>& p)
                      std::abs(uz) * (std::abs(c1) + std::abs(c2));
   const double err = bound * sum + 0x1p-760;
   return det > err ? 1 : det < -err ? -1 : 0;
+}
+
+/// The first stage of filtered_orientation() on two tetrahedra at once, one
+/// per lane of a register (double_pair.h): the same operations in the same
+/// order, so each lane's sign, +1 or -1, is the one filtered_orientation()
+/// returns; 0 where that stage cannot decide (then ask exact_orientation()).
+inline std::array<int, 2> coarse_orientations(const std::array<const double*, 4>& a,
+                                              const std::array<const double*, 4>& b)
+{
+#if SPRING_MOTION_HAS_DOUBLE_PAIR
+  constexpr double u = 0x1p-53;
+  const auto at = [&](int k, int j) { return Double_pair{a[std::size_t(k)][j], b[std::size_t(k)][j]}; };
+  const auto largest = [](Double_pair x, Double_pair y) { return x < y ? y : x; }; // std::max's choice
+  const Double_pair x0 = at(0, 0), y0 = at(0, 1), z0 = at(0, 2);
+  const Double_pair ux = at(1, 0) - x0, uy = at(1, 1) - y0, uz = at(1, 2) - z0;
+  const Double_pair vx = at(2, 0) - x0, vy = at(2, 1) - y0, vz = at(2, 2) - z0;
+  const Double_pair wx = at(3, 0) - x0, wy = at(3, 1) - y0, wz = at(3, 2) - z0;
+  const Double_pair mx = largest(lane_abs(ux), largest(lane_abs(vx), lane_abs(wx)));
+  const Double_pair my = largest(lane_abs(uy), largest(lane_abs(vy), lane_abs(wy)));
+  const Double_pair mz = largest(lane_abs(uz), largest(lane_abs(vz), lane_abs(wz)));
+  // out of range or NaN in either lane: both go to the scalar filter, which
+  // does not form the products that could overflow
+  const Double_pair_mask in_range = largest(mx, largest(my, mz)) <= 0x1p+300;
+  if(!(in_range[0] && in_range[1]))
+    return {0, 0};
+  const Double_pair a1 = vy * wz, a2 = vz * wy, b1 = vz * wx, b2 = vx * wz, c1 = vx * wy, c2 = vy * wx;
+  const Double_pair det = ux * (a1 - a2) + uy * (b1 - b2) + uz * (c1 - c2);
+  const Double_pair coarse = 43 * u * mx * my * mz + 0x1p-760;
+  const Double_pair_mask positive = det > coarse, negative = det < -coarse;
+  return {positive[0] ? 1 : negative[0] ? -1 : 0, positive[1] ? 1 : negative[1] ? -1 : 0};
+#else
+  (void)a;
+  (void)b;
+  return {0, 0};
+#endif
 }
 
 /// CGAL's filtered predicate: the sign of the determinant exactly for the

@@ -6,6 +6,7 @@
 #include <spring_motion/internal/solver/angle_slots.h>
 #include <spring_motion/internal/solver/threads.h>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -45,11 +46,30 @@ bool orientation_changed(const Angle_slots& slots, const std::vector<std::array<
 {
   const long m = long(sign.size());
   bool changed = false;
-  // thread-safe: the filtered predicates keep their rounding-mode state per call
+  const auto differs = [&](std::size_t i) {
+    return exact_orientation(traversal_element_points<D>(slots, xt, i)) != sign[i];
+  };
+  if constexpr(D == 3) {
+    // two tetrahedra at once where the filter's first stage decides both
+    // (coarse_orientations), each alone otherwise; an odd last one is
+    // paired with itself
+    const long pairs = (m + 1) / 2;
+    // thread-safe: the filtered predicates keep their rounding-mode state per call
 #pragma omp parallel for schedule(static) num_threads(thread_count(threads, std::size_t(m))) reduction(|| : changed)
-  for(long i = 0; i < m; ++i)
-    changed = changed ||
-              exact_orientation(traversal_element_points<D>(slots, xt, std::size_t(i))) != sign[std::size_t(i)];
+    for(long h = 0; h < pairs; ++h) {
+      const std::size_t i = 2 * std::size_t(h), j = std::min(i + 1, std::size_t(m) - 1);
+      const auto corners = [&](std::size_t t) {
+        const auto* v = &slots.ordered_elements[4 * t];
+        return std::array<const double*, 4>{xt[v[0]].data(), xt[v[1]].data(), xt[v[2]].data(), xt[v[3]].data()};
+      };
+      const auto s = coarse_orientations(corners(i), corners(j));
+      changed = changed || (s[0] != 0 ? s[0] != sign[i] : differs(i)) || (s[1] != 0 ? s[1] != sign[j] : differs(j));
+    }
+  } else {
+#pragma omp parallel for schedule(static) num_threads(thread_count(threads, std::size_t(m))) reduction(|| : changed)
+    for(long i = 0; i < m; ++i)
+      changed = changed || differs(std::size_t(i));
+  }
   return changed;
 }
 

@@ -363,41 +363,99 @@ inline bool dihedral_sines_squared_above(const std::array<std::array<double, 3>,
 /// scaled by its extent (angles do not change), so tiny or huge coordinates
 /// neither underflow nor overflow the fourth powers. sin^2 is floored at
 /// 1e-200 as in inverse_sin_squared(), so a flat triangle gives 1e200.
+///
+/// Written once over the lane type T (double_pair.h), as
+/// dihedral_inverse_sin_squared_lanes(): `c` holds the three corners'
+/// coordinates, corner by corner.
+template <int N, class T>
+inline void triangle_inverse_sin_squared_lanes(const T (&c)[3 * N], T (&out)[3])
+{
+  T u[N], w[N];
+  for(int k = 0; k < N; ++k) {
+    u[k] = c[N + k] - c[k];
+    w[k] = c[2 * N + k] - c[k];
+  }
+  // std::max's choices, in the scalar form's order
+  T extent = lanes_of<T>(0);
+  for(int k = 0; k < N; ++k) {
+    const T a = lane_abs(u[k]), b = lane_abs(w[k]);
+    const T larger = a < b ? b : a;
+    extent = extent < larger ? larger : extent;
+  }
+  // no lane divides by zero (see dihedral_inverse_sin_squared_lanes)
+  const auto point_like = extent == lanes_of<T>(0);
+  const T inv = lanes_of<T>(1.0) / (point_like ? lanes_of<T>(1.0) : extent);
+  for(int k = 0; k < N; ++k) {
+    u[k] *= inv;
+    w[k] *= inv;
+  }
+  T cross2;
+  if constexpr(N == 2) {
+    const T z = u[0] * w[1] - u[1] * w[0];
+    cross2 = z * z;
+  } else {
+    const T n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    cross2 = lanes_of<T>(0);
+    for(int k = 0; k < 3; ++k)
+      cross2 += n[k] * n[k];
+  }
+  T uu = lanes_of<T>(0), ww = lanes_of<T>(0), vv = lanes_of<T>(0);
+  for(int k = 0; k < N; ++k) {
+    uu += u[k] * u[k];
+    ww += w[k] * w[k];
+  }
+  for(int k = 0; k < N; ++k) {
+    const T d = w[k] - u[k];
+    vv += d * d;
+  }
+  // local edge k is opposite vertex k: vertex 0 lies on u and w, vertex 1 on
+  // u and w - u, vertex 2 on w and w - u
+  const T den[3] = {uu * ww, uu * vv, ww * vv};
+  const T cap = lanes_of<T>(1e200);
+  for(int k = 0; k < 3; ++k) {
+    const auto finite = (den[k] > 0) & (cross2 > 1e-200 * den[k]) & !point_like;
+    out[k] = finite ? den[k] / (finite ? cross2 : lanes_of<T>(1.0)) : cap;
+  }
+}
+
 template <int N>
 inline std::array<double, 3> triangle_inverse_sin_squared(const std::array<double, N>& p0,
                                                           const std::array<double, N>& p1,
                                                           const std::array<double, N>& p2)
 {
-  std::array<double, N> u = sub<N>(p1, p0), w = sub<N>(p2, p0);
-  double extent = 0;
-  for(int c = 0; c < N; ++c)
-    extent = std::max(extent, std::max(std::abs(u[c]), std::abs(w[c])));
-  constexpr double cap = 1e200;
-  if(extent == 0)
-    return {cap, cap, cap};
-  const double inv = 1.0 / extent;
-  for(int c = 0; c < N; ++c) {
-    u[c] *= inv;
-    w[c] *= inv;
+  double c[3 * N], out[3];
+  for(int k = 0; k < N; ++k) {
+    c[k] = p0[std::size_t(k)];
+    c[N + k] = p1[std::size_t(k)];
+    c[2 * N + k] = p2[std::size_t(k)];
   }
-  double cross2;
-  if constexpr(N == 2) {
-    const double z = u[0] * w[1] - u[1] * w[0];
-    cross2 = z * z;
-  } else {
-    const auto n = cross(u, w);
-    cross2 = dot<3>(n, n);
-  }
-  const double uu = dot<N>(u, u), ww = dot<N>(w, w), vv = dot<N>(sub<N>(w, u), sub<N>(w, u));
-  // local edge k is opposite vertex k: vertex 0 lies on u and w, vertex 1 on
-  // u and w - u, vertex 2 on w and w - u
-  const std::array<double, 3> den{uu * ww, uu * vv, ww * vv};
-  std::array<double, 3> out;
+  triangle_inverse_sin_squared_lanes<N>(c, out);
+  return {out[0], out[1], out[2]};
+}
+
+/// triangle_inverse_sin_squared() of two plane triangles, corners a and b,
+/// at once: the same values.
+inline std::array<std::array<double, 3>, 2> triangle_inverse_sin_squared(const std::array<const double*, 3>& a,
+                                                                         const std::array<const double*, 3>& b)
+{
+  std::array<std::array<double, 3>, 2> r;
+#if SPRING_MOTION_HAS_DOUBLE_PAIR
+  Double_pair c[6], out[3];
   for(int k = 0; k < 3; ++k)
-    out[std::size_t(k)] = (den[std::size_t(k)] > 0 && cross2 > 1e-200 * den[std::size_t(k)])
-                              ? den[std::size_t(k)] / cross2
-                              : cap;
-  return out;
+    for(int j = 0; j < 2; ++j)
+      c[2 * k + j] = Double_pair{a[std::size_t(k)][j], b[std::size_t(k)][j]};
+  triangle_inverse_sin_squared_lanes<2>(c, out);
+  for(std::size_t k = 0; k < 3; ++k) {
+    r[0][k] = out[k][0];
+    r[1][k] = out[k][1];
+  }
+#else
+  for(int t = 0; t < 2; ++t) {
+    const auto& q = t == 0 ? a : b;
+    r[std::size_t(t)] = triangle_inverse_sin_squared<2>({q[0][0], q[0][1]}, {q[1][0], q[1][1]}, {q[2][0], q[2][1]});
+  }
+#endif
+  return r;
 }
 
 /// 1/sin^2 of the tetrahedron's dihedral angle at each edge, in the order of

@@ -45,6 +45,17 @@ inline std::array<double, Spring_network<D>::edges_per_element> element_edge_inv
     return dihedral_inverse_sin_squared(p);
 }
 
+/// The same for two elements at once (the pair forms of angles.h), corners a and b.
+template <int D>
+inline std::array<std::array<double, Spring_network<D>::edges_per_element>, 2> element_edge_inverse_sin_squared(
+    const std::array<const double*, D + 1>& a, const std::array<const double*, D + 1>& b)
+{
+  if constexpr(D == 2)
+    return triangle_inverse_sin_squared(a, b);
+  else
+    return dihedral_inverse_sin_squared(a, b);
+}
+
 /// What compute_edge_stiffness keeps between calls: the angles (or 1/sin^2
 /// of them for a model that reads only that, Reads_inverse_sin_squared) and
 /// the positions in the traversal's order (Angle_slots).
@@ -96,32 +107,30 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   if(by_layout) {
     copy_in_traversal_order<D>(slots, x, xt, threads);
     angles.resize(std::size_t(m) * E + padding);
-    if constexpr(D == 3 && sines) {
-      // two tetrahedra at once (double_pair.h); an odd last one is paired
+    if constexpr(sines) {
+      // two elements at once (double_pair.h); an odd last one is paired
       // with itself
       const long pairs = (m + 1) / 2;
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
       for(long h = 0; h < pairs; ++h) {
         const std::size_t i = 2 * std::size_t(h), j = std::min(i + 1, std::size_t(m) - 1);
         const auto corners = [&](std::size_t t) {
-          const auto* v = &slots.ordered_elements[4 * t];
-          return std::array<const double*, 4>{xt[v[0]].data(), xt[v[1]].data(), xt[v[2]].data(), xt[v[3]].data()};
+          std::array<const double*, D + 1> c;
+          for(std::size_t v = 0; v <= D; ++v)
+            c[v] = xt[slots.ordered_elements[(D + 1) * t + v]].data();
+          return c;
         };
-        const auto a = dihedral_inverse_sin_squared(corners(i), corners(j));
-        for(std::size_t q = 0; q < 6; ++q)
-          angles[slots.slot_position[i * 6 + q]] = a[0][q];
-        for(std::size_t q = 0; q < 6; ++q)
-          angles[slots.slot_position[j * 6 + q]] = a[1][q];
+        const auto a = element_edge_inverse_sin_squared<D>(corners(i), corners(j));
+        for(std::size_t q = 0; q < E; ++q)
+          angles[slots.slot_position[i * E + q]] = a[0][q];
+        for(std::size_t q = 0; q < E; ++q)
+          angles[slots.slot_position[j * E + q]] = a[1][q];
       }
     } else {
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
       for(long i = 0; i < m; ++i) {
         const auto p = traversal_element_points<D>(slots, xt, std::size_t(i));
-        std::array<double, E> a;
-        if constexpr(sines)
-          a = element_edge_inverse_sin_squared<D>(p);
-        else
-          a = element_edge_angles<D>(p);
+        const std::array<double, E> a = element_edge_angles<D>(p);
         for(int j = 0; j < E; ++j)
           angles[slots.slot_position[std::size_t(i) * E + std::size_t(j)]] = a[std::size_t(j)];
       }

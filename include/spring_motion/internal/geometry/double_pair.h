@@ -3,6 +3,7 @@
 #define SPRING_MOTION_INTERNAL_GEOMETRY_DOUBLE_PAIR_H
 
 #include <cmath>
+#include <type_traits>
 
 // Two elements' arithmetic in the two lanes of one SSE2 register, through
 // GCC's vector extension (which Clang also reads). The library builds for
@@ -37,7 +38,7 @@ inline double lane_abs(double v) { return std::abs(v); }
 template <class T>
 inline T lanes_of(double v)
 {
-  if constexpr(sizeof(T) == sizeof(double))
+  if constexpr(std::is_same_v<T, double>)
     return v;
   else
     return T{v, v};

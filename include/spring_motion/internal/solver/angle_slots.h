@@ -96,6 +96,19 @@ std::array<std::array<double, D>, D + 1> traversal_element_points(const Angle_sl
   return p;
 }
 
+/// The same corners in place: pointers to their coordinates in xt (for the
+/// kernels that read two elements at once, double_pair.h).
+template <int D>
+std::array<const double*, D + 1> traversal_element_corners(const Angle_slots& slots,
+                                                           const std::vector<std::array<double, D>>& xt,
+                                                           std::size_t i)
+{
+  std::array<const double*, D + 1> c;
+  for(std::size_t k = 0; k <= D; ++k)
+    c[k] = xt[slots.ordered_elements[i * (D + 1) + k]].data();
+  return c;
+}
+
 } // namespace internal
 } // namespace spring_motion
 

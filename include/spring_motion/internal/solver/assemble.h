@@ -114,13 +114,8 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
       for(long h = 0; h < pairs; ++h) {
         const std::size_t i = 2 * std::size_t(h), j = std::min(i + 1, std::size_t(m) - 1);
-        const auto corners = [&](std::size_t t) {
-          std::array<const double*, D + 1> c;
-          for(std::size_t v = 0; v <= D; ++v)
-            c[v] = xt[slots.ordered_elements[(D + 1) * t + v]].data();
-          return c;
-        };
-        const auto a = element_edge_inverse_sin_squared<D>(corners(i), corners(j));
+        const auto a = element_edge_inverse_sin_squared<D>(traversal_element_corners<D>(slots, xt, i),
+                                                           traversal_element_corners<D>(slots, xt, j));
         for(std::size_t q = 0; q < E; ++q)
           angles[slots.slot_position[i * E + q]] = a[0][q];
         for(std::size_t q = 0; q < E; ++q)

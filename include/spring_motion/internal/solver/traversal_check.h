@@ -58,11 +58,8 @@ bool orientation_changed(const Angle_slots& slots, const std::vector<std::array<
 #pragma omp parallel for schedule(static) num_threads(thread_count(threads, std::size_t(m))) reduction(|| : changed)
     for(long h = 0; h < pairs; ++h) {
       const std::size_t i = 2 * std::size_t(h), j = std::min(i + 1, std::size_t(m) - 1);
-      const auto corners = [&](std::size_t t) {
-        const auto* v = &slots.ordered_elements[4 * t];
-        return std::array<const double*, 4>{xt[v[0]].data(), xt[v[1]].data(), xt[v[2]].data(), xt[v[3]].data()};
-      };
-      const auto s = coarse_orientations(corners(i), corners(j));
+      const auto s =
+          coarse_orientations(traversal_element_corners<3>(slots, xt, i), traversal_element_corners<3>(slots, xt, j));
       changed = changed || (s[0] != 0 ? s[0] != sign[i] : differs(i)) || (s[1] != 0 ? s[1] != sign[j] : differs(j));
     }
   } else {

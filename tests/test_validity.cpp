@@ -598,7 +598,8 @@ TEST_CASE("traversal check: three separate tetrahedra, each flipped alone, two a
     }
 }
 
-TEST_CASE("coarse_orientations: two tetrahedra's first-stage signs are filtered_orientation's", "[validity][orientation]")
+TEST_CASE("coarse_orientations: two tetrahedra's first-stage signs are filtered_orientation's",
+          "[validity][orientation]")
 {
   std::mt19937_64 rng(20261130);
   std::uniform_real_distribution<double> coordinate(-1, 1);

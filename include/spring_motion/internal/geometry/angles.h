@@ -438,24 +438,7 @@ inline std::array<double, 3> triangle_inverse_sin_squared(const std::array<doubl
 inline std::array<std::array<double, 3>, 2> triangle_inverse_sin_squared(const std::array<const double*, 3>& a,
                                                                          const std::array<const double*, 3>& b)
 {
-  std::array<std::array<double, 3>, 2> r;
-#if SPRING_MOTION_HAS_DOUBLE_PAIR
-  Double_pair c[6], out[3];
-  for(int k = 0; k < 3; ++k)
-    for(int j = 0; j < 2; ++j)
-      c[2 * k + j] = Double_pair{a[std::size_t(k)][j], b[std::size_t(k)][j]};
-  triangle_inverse_sin_squared_lanes<2>(c, out);
-  for(std::size_t k = 0; k < 3; ++k) {
-    r[0][k] = out[k][0];
-    r[1][k] = out[k][1];
-  }
-#else
-  for(int t = 0; t < 2; ++t) {
-    const auto& q = t == 0 ? a : b;
-    r[std::size_t(t)] = triangle_inverse_sin_squared<2>({q[0][0], q[0][1]}, {q[1][0], q[1][1]}, {q[2][0], q[2][1]});
-  }
-#endif
-  return r;
+  return in_two_lanes<3, 2, 3>(a, b, [](const auto& c, auto& out) { triangle_inverse_sin_squared_lanes<2>(c, out); });
 }
 
 /// 1/sin^2 of the tetrahedron's dihedral angle at each edge, in the order of
@@ -539,25 +522,7 @@ inline std::array<double, 6> dihedral_inverse_sin_squared(const std::array<std::
 inline std::array<std::array<double, 6>, 2> dihedral_inverse_sin_squared(const std::array<const double*, 4>& a,
                                                                          const std::array<const double*, 4>& b)
 {
-  std::array<std::array<double, 6>, 2> r;
-#if SPRING_MOTION_HAS_DOUBLE_PAIR
-  Double_pair c[12], out[6];
-  for(int k = 0; k < 4; ++k)
-    for(int j = 0; j < 3; ++j)
-      c[3 * k + j] = Double_pair{a[std::size_t(k)][j], b[std::size_t(k)][j]};
-  dihedral_inverse_sin_squared_lanes(c, out);
-  for(std::size_t k = 0; k < 6; ++k) {
-    r[0][k] = out[k][0];
-    r[1][k] = out[k][1];
-  }
-#else
-  for(int t = 0; t < 2; ++t) {
-    const auto& q = t == 0 ? a : b;
-    r[std::size_t(t)] = dihedral_inverse_sin_squared({{{q[0][0], q[0][1], q[0][2]}, {q[1][0], q[1][1], q[1][2]},
-                                                       {q[2][0], q[2][1], q[2][2]}, {q[3][0], q[3][1], q[3][2]}}});
-  }
-#endif
-  return r;
+  return in_two_lanes<4, 3, 6>(a, b, [](const auto& c, auto& out) { dihedral_inverse_sin_squared_lanes(c, out); });
 }
 
 /// Signed area (2D) or volume (3D) of a simplex, positive when the vertices

@@ -44,66 +44,99 @@ inline int filtered_orientation(const std::array<std::array<double, 2>, 3>& p)
   const double err = bound * sum + 0x1p-760;
   return det > err ? 1 : det < -err ? -1 : 0;
 }
+/// The 3D filter's first stage, written once over the lane type T
+/// (double_pair.h; at(k, j): coordinate j of corner k in each lane): the
+/// differences to the first corner, the products of the 2 x 2 minors, the
+/// determinant, and the bound 43u mx my mz on its error. `in_range` is
+/// false when some lane has a difference above 2^300 or a NaN: then nothing
+/// past that test is computed (no product overflows), and the lanes are left
+/// undecided.
+template <class T>
+struct Orientation_first_stage
+{
+  bool in_range;
+  T ux, uy, uz, a1, a2, b1, b2, c1, c2, det, coarse;
+};
+
+inline bool every_lane_at_most(double v, double bound)
+{
+  return std::islessequal(v, bound); // quiet: a NaN raises no exception
+}
+#if SPRING_MOTION_HAS_DOUBLE_PAIR
+inline bool every_lane_at_most(Double_pair v, double bound)
+{
+  const Double_pair_mask m = v <= bound;
+  return m[0] && m[1];
+}
+#endif
+
+template <class T, class At>
+inline Orientation_first_stage<T> orientation_first_stage(const At& at)
+{
+  constexpr double u = 0x1p-53;
+  Orientation_first_stage<T> s{};
+  const auto largest = [](T x, T y) { return x < y ? y : x; }; // std::max's choice
+  const T x0 = at(0, 0), y0 = at(0, 1), z0 = at(0, 2);
+  s.ux = at(1, 0) - x0, s.uy = at(1, 1) - y0, s.uz = at(1, 2) - z0;
+  const T vx = at(2, 0) - x0, vy = at(2, 1) - y0, vz = at(2, 2) - z0;
+  const T wx = at(3, 0) - x0, wy = at(3, 1) - y0, wz = at(3, 2) - z0;
+  const T mx = largest(lane_abs(s.ux), largest(lane_abs(vx), lane_abs(wx)));
+  const T my = largest(lane_abs(s.uy), largest(lane_abs(vy), lane_abs(wy)));
+  const T mz = largest(lane_abs(s.uz), largest(lane_abs(vz), lane_abs(wz)));
+  s.in_range = every_lane_at_most(largest(mx, largest(my, mz)), 0x1p+300);
+  if(!s.in_range)
+    return s;
+  s.a1 = vy * wz, s.a2 = vz * wy, s.b1 = vz * wx, s.b2 = vx * wz, s.c1 = vx * wy, s.c2 = vy * wx;
+  s.det = s.ux * (s.a1 - s.a2) + s.uy * (s.b1 - s.b2) + s.uz * (s.c1 - s.c2);
+  // the sum of absolute values bounded by 6 mx my mz: one bound for all,
+  // cheap, it decides well-shaped elements
+  s.coarse = 43 * u * mx * my * mz + 0x1p-760;
+  return s;
+}
+
 inline int filtered_orientation(const std::array<std::array<double, 3>, 4>& p)
 {
   constexpr double u = 0x1p-53;
-  const double ux = p[1][0] - p[0][0], uy = p[1][1] - p[0][1], uz = p[1][2] - p[0][2];
-  const double vx = p[2][0] - p[0][0], vy = p[2][1] - p[0][1], vz = p[2][2] - p[0][2];
-  const double wx = p[3][0] - p[0][0], wy = p[3][1] - p[0][1], wz = p[3][2] - p[0][2];
-  const double mx = std::max(std::abs(ux), std::max(std::abs(vx), std::abs(wx)));
-  const double my = std::max(std::abs(uy), std::max(std::abs(vy), std::abs(wy)));
-  const double mz = std::max(std::abs(uz), std::max(std::abs(vz), std::abs(wz)));
-  // quiet comparisons: a NaN raises no exception
-  if(!std::islessequal(std::max(mx, std::max(my, mz)), 0x1p+300))
+  const auto s = orientation_first_stage<double>([&](int k, int j) { return p[std::size_t(k)][std::size_t(j)]; });
+  if(!s.in_range)
     return 0;
-  const double a1 = vy * wz, a2 = vz * wy, b1 = vz * wx, b2 = vx * wz, c1 = vx * wy, c2 = vy * wx;
-  const double det = ux * (a1 - a2) + uy * (b1 - b2) + uz * (c1 - c2);
-  // first the sum of absolute values bounded by 6 mx my mz (one bound for
-  // all, cheap: it decides well-shaped elements), then the sum itself
-  const double coarse = 43 * u * mx * my * mz + 0x1p-760;
-  if(det > coarse)
+  if(s.det > s.coarse)
     return 1;
-  if(det < -coarse)
+  if(s.det < -s.coarse)
     return -1;
+  // then the sum itself
   constexpr double bound = (7 + 56 * u) * u;
-  const double sum = std::abs(ux) * (std::abs(a1) + std::abs(a2)) + std::abs(uy) * (std::abs(b1) + std::abs(b2)) +
-                     std::abs(uz) * (std::abs(c1) + std::abs(c2));
+  const double sum = std::abs(s.ux) * (std::abs(s.a1) + std::abs(s.a2)) +
+                     std::abs(s.uy) * (std::abs(s.b1) + std::abs(s.b2)) +
+                     std::abs(s.uz) * (std::abs(s.c1) + std::abs(s.c2));
   const double err = bound * sum + 0x1p-760;
-  return det > err ? 1 : det < -err ? -1 : 0;
+  return s.det > err ? 1 : s.det < -err ? -1 : 0;
 }
 
 /// The first stage of filtered_orientation() on two tetrahedra at once, one
-/// per lane of a register (double_pair.h): the same operations in the same
-/// order, so each lane's sign, +1 or -1, is the one filtered_orientation()
-/// returns; 0 where that stage cannot decide (then ask exact_orientation()).
+/// per lane of a register (double_pair.h): each lane's sign, +1 or -1, is the
+/// one filtered_orientation() returns; 0 where that stage cannot decide (then
+/// ask exact_orientation()), for both when either has a difference above
+/// 2^300 or a NaN.
 inline std::array<int, 2> coarse_orientations(const std::array<const double*, 4>& a,
                                               const std::array<const double*, 4>& b)
 {
 #if SPRING_MOTION_HAS_DOUBLE_PAIR
-  constexpr double u = 0x1p-53;
-  const auto at = [&](int k, int j) { return Double_pair{a[std::size_t(k)][j], b[std::size_t(k)][j]}; };
-  const auto largest = [](Double_pair x, Double_pair y) { return x < y ? y : x; }; // std::max's choice
-  const Double_pair x0 = at(0, 0), y0 = at(0, 1), z0 = at(0, 2);
-  const Double_pair ux = at(1, 0) - x0, uy = at(1, 1) - y0, uz = at(1, 2) - z0;
-  const Double_pair vx = at(2, 0) - x0, vy = at(2, 1) - y0, vz = at(2, 2) - z0;
-  const Double_pair wx = at(3, 0) - x0, wy = at(3, 1) - y0, wz = at(3, 2) - z0;
-  const Double_pair mx = largest(lane_abs(ux), largest(lane_abs(vx), lane_abs(wx)));
-  const Double_pair my = largest(lane_abs(uy), largest(lane_abs(vy), lane_abs(wy)));
-  const Double_pair mz = largest(lane_abs(uz), largest(lane_abs(vz), lane_abs(wz)));
-  // out of range or NaN in either lane: both go to the scalar filter, which
-  // does not form the products that could overflow
-  const Double_pair_mask in_range = largest(mx, largest(my, mz)) <= 0x1p+300;
-  if(!(in_range[0] && in_range[1]))
+  const auto s = orientation_first_stage<Double_pair>(
+      [&](int k, int j) { return Double_pair{a[std::size_t(k)][j], b[std::size_t(k)][j]}; });
+  if(!s.in_range)
     return {0, 0};
-  const Double_pair a1 = vy * wz, a2 = vz * wy, b1 = vz * wx, b2 = vx * wz, c1 = vx * wy, c2 = vy * wx;
-  const Double_pair det = ux * (a1 - a2) + uy * (b1 - b2) + uz * (c1 - c2);
-  const Double_pair coarse = 43 * u * mx * my * mz + 0x1p-760;
-  const Double_pair_mask positive = det > coarse, negative = det < -coarse;
+  const Double_pair_mask positive = s.det > s.coarse, negative = s.det < -s.coarse;
   return {positive[0] ? 1 : negative[0] ? -1 : 0, positive[1] ? 1 : negative[1] ? -1 : 0};
 #else
-  (void)a;
-  (void)b;
-  return {0, 0};
+  std::array<int, 2> r{};
+  for(std::size_t t = 0; t < 2; ++t) {
+    const auto& q = t == 0 ? a : b;
+    const auto s = orientation_first_stage<double>([&](int k, int j) { return q[std::size_t(k)][j]; });
+    if(s.in_range)
+      r[t] = s.det > s.coarse ? 1 : s.det < -s.coarse ? -1 : 0;
+  }
+  return r;
 #endif
 }
 

@@ -84,20 +84,9 @@ void copy_in_traversal_order(const Angle_slots& slots, const std::vector<std::ar
     xt[std::size_t(v)] = x[slots.traversal_vertices[std::size_t(v)]];
 }
 
-/// The corners of the traversal's i-th element, read from xt (copy_in_traversal_order).
-template <int D>
-std::array<std::array<double, D>, D + 1> traversal_element_points(const Angle_slots& slots,
-                                                                  const std::vector<std::array<double, D>>& xt,
-                                                                  std::size_t i)
-{
-  std::array<std::array<double, D>, D + 1> p;
-  for(int k = 0; k <= D; ++k)
-    p[std::size_t(k)] = xt[slots.ordered_elements[i * (D + 1) + std::size_t(k)]];
-  return p;
-}
-
-/// The same corners in place: pointers to their coordinates in xt (for the
-/// kernels that read two elements at once, double_pair.h).
+/// The corners of the traversal's i-th element in place: pointers to their
+/// coordinates in xt (copy_in_traversal_order), as the kernels that read two
+/// elements at once take them (double_pair.h).
 template <int D>
 std::array<const double*, D + 1> traversal_element_corners(const Angle_slots& slots,
                                                            const std::vector<std::array<double, D>>& xt,
@@ -107,6 +96,20 @@ std::array<const double*, D + 1> traversal_element_corners(const Angle_slots& sl
   for(std::size_t k = 0; k <= D; ++k)
     c[k] = xt[slots.ordered_elements[i * (D + 1) + k]].data();
   return c;
+}
+
+/// The same corners as points.
+template <int D>
+std::array<std::array<double, D>, D + 1> traversal_element_points(const Angle_slots& slots,
+                                                                  const std::vector<std::array<double, D>>& xt,
+                                                                  std::size_t i)
+{
+  const auto c = traversal_element_corners<D>(slots, xt, i);
+  std::array<std::array<double, D>, D + 1> p;
+  for(std::size_t k = 0; k <= D; ++k)
+    for(std::size_t j = 0; j < D; ++j)
+      p[k][j] = c[k][j];
+  return p;
 }
 
 } // namespace internal

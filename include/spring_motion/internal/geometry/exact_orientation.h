@@ -44,6 +44,7 @@ inline int filtered_orientation(const std::array<std::array<double, 2>, 3>& p)
   const double err = bound * sum + 0x1p-760;
   return det > err ? 1 : det < -err ? -1 : 0;
 }
+
 /// The 3D filter's first stage, written once over the lane type T
 /// (double_pair.h; at(k, j): coordinate j of corner k in each lane): the
 /// differences to the first corner, the products of the 2 x 2 minors, the

@@ -506,18 +506,28 @@ private:
     s.threads = threads;
     const std::size_t n = net_.number_of_vertices();
     auto t0 = Clock::now();
-    delta_.assign(n, Point{});
+    // The per-vertex passes of a step run on the step's threads: serial, they
+    // kept the other thread waiting at every step.
+    int nt = internal::thread_count(threads, n);
+    const long nfree = long(free_.size());
+    delta_.resize(n);
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long i = 0; i < long(n); ++i)
+      delta_[std::size_t(i)] = Point{};
     if(options.solver.warm_start) {
       const double h = target - t_, m = 0.5 * (target + t_);
       const auto w = internal::warm_start_weights(h, m, history_.h, history_.m, history_.count,
                                                   options.solver.extrapolate);
-      for(Index i : free_)
+#pragma omp parallel for schedule(static) num_threads(nt)
+      for(long f = 0; f < nfree; ++f) {
+        const Index i = free_[std::size_t(f)];
         for(int c = 0; c < D; ++c) {
           double v = w.weight[0] * increments_[0][i][c];
           for(std::size_t j = 1; j < w.used; ++j)
             v += w.weight[j] * increments_[j][i][c];
           delta_[i][c] = v;
         }
+      }
     }
     // the motion is evaluated once per moving vertex and attempt
     moving_targets_.resize(moving_.size());
@@ -566,6 +576,7 @@ private:
     threads = solver_options.threads = threads_.after_setup(
         seconds_since(attempt_start), cpu_start >= 0 && setup_cpu >= 0 ? setup_cpu - cpu_start : -1);
     s.threads = threads;
+    nt = internal::thread_count(threads, n);
 
     Step_system_view<D> view;
     if(system_observer || solve_override) {
@@ -588,7 +599,7 @@ private:
       solver_.set_solution(outside_solution_);
     } else
       sr = solver_.solve(solver_options);
-    solver_.store(delta_);
+    solver_.store(delta_, threads);
     s.seconds_solve += seconds_since(t0);
     s.iterations += sr.iterations;
     s.converged = s.converged && sr.converged;
@@ -597,10 +608,16 @@ private:
     s.error_estimate = std::max(s.error_estimate, sr.error_estimate);
 
     t0 = Clock::now();
-    candidate_ = positions_;
-    for(Index i : free_)
+    candidate_.resize(n);
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long i = 0; i < long(n); ++i)
+      candidate_[std::size_t(i)] = positions_[std::size_t(i)];
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long f = 0; f < nfree; ++f) {
+      const Index i = free_[std::size_t(f)];
       for(int c = 0; c < D; ++c)
         candidate_[i][c] += delta_[i][c];
+    }
     // constrained vertices land exactly on their prescribed positions
     for(std::size_t k = 0; k < moving_.size(); ++k)
       candidate_[moving_[k]] = moving_targets_[k];
@@ -627,12 +644,15 @@ private:
       return false;
     // copied, not swapped: positions() keeps its storage for the deformer's
     // lifetime, so a view of it (the Python module's) stays valid
-    std::copy(candidate_.begin(), candidate_.end(), positions_.begin());
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long i = 0; i < long(n); ++i)
+      positions_[std::size_t(i)] = candidate_[std::size_t(i)];
     // the oldest increment's storage takes the newest
     increments_[2].swap(increments_[1]);
     increments_[1].swap(increments_[0]);
-    for(Index i : free_)
-      increments_[0][i] = delta_[i];
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long f = 0; f < nfree; ++f)
+      increments_[0][free_[std::size_t(f)]] = delta_[free_[std::size_t(f)]];
     history_.h = {target - t_, history_.h[0], history_.h[1]};
     history_.m = {0.5 * (target + t_), history_.m[0], history_.m[1]};
     ++history_.count;

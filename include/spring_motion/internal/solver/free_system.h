@@ -412,10 +412,12 @@ public:
   }
 
   /// Writes the solution into the free entries of x.
-  void store(std::vector<Row>& x) const
+  void store(std::vector<Row>& x, int threads = 1) const
   {
-    for(std::size_t r = 0; r < order_.size(); ++r)
-      x[order_[r]] = x_[r];
+    const long nf = long(order_.size());
+#pragma omp parallel for schedule(static) num_threads(team(threads))
+    for(long r = 0; r < nf; ++r)
+      x[order_[std::size_t(r)]] = x_[std::size_t(r)];
   }
 
   /// One SOR sweep in the solver's order on the loaded system; returns the
@@ -1104,7 +1106,7 @@ private:
           z_[std::size_t(k)][c] += a * e[c];
       }
     } else {
-      multigrid_.restrict_from(s_);
+      multigrid_.restrict_from(s_, threads);
       multigrid_.cycle();
 #pragma omp parallel for schedule(static) num_threads(nt)
       for(long k = 0; k < nf; ++k) {

@@ -646,67 +646,6 @@ TEST_CASE("make_spring_network: the boundary facets are those of one element, in
   CHECK(net2.boundary_facets.size() == 4 * 6);
 }
 
-// make_spring_network builds the angles' layout and the other tables at
-// once on two threads: both must come out as they do on one.
-template <int D>
-void require_same_network(const Spring_network<D>& a, const Spring_network<D>& b)
-{
-  CHECK(a.edges == b.edges);
-  CHECK(a.element_edges == b.element_edges);
-  CHECK(a.adjacency_offsets == b.adjacency_offsets);
-  CHECK(a.adjacency == b.adjacency);
-  CHECK(a.adjacency_edge == b.adjacency_edge);
-  CHECK(a.boundary_facets == b.boundary_facets);
-  CHECK(a.on_boundary == b.on_boundary);
-  CHECK(a.vertex_label_offsets == b.vertex_label_offsets);
-  CHECK(a.vertex_labels == b.vertex_labels);
-  CHECK(same_bits(a.longest_initial_edge, b.longest_initial_edge));
-  const internal::Angle_slots &p = internal::angle_slots(a), &q = internal::angle_slots(b);
-  CHECK(p.ordered_elements == q.ordered_elements);
-  CHECK(p.slot_position == q.slot_position);
-  CHECK(p.layout_slot_offsets == q.layout_slot_offsets);
-  CHECK(p.layout_edge == q.layout_edge);
-  CHECK(p.traversal_vertices == q.traversal_vertices);
-  CHECK(p.layout_edge_ends == q.layout_edge_ends);
-}
-
-template <int D>
-void compare_network_threads(int n)
-{
-  std::mt19937 rng(5);
-  auto grid = kuhn_grid<D>(n);
-  std::shuffle(grid.elements.begin(), grid.elements.end(), rng);
-  // a label on every third boundary facet, the labels cycling through 1..3
-  const auto facets = make_spring_network<D>(grid.points, grid.elements).boundary_facets;
-  std::vector<Labeled_facet<D>> labeled;
-  for(std::size_t f = 0; f < facets.size(); f += 3)
-    labeled.push_back({facets[f], int(1 + f % 3)});
-  // the network's set-up runs on OpenMP's default team
-  const auto on_threads = [&](int threads) {
-#ifdef _OPENMP
-    const int before = omp_get_max_threads();
-    omp_set_num_threads(threads);
-#else
-    (void)threads;
-#endif
-    auto net = make_spring_network<D>(grid.points, grid.elements, labeled);
-#ifdef _OPENMP
-    omp_set_num_threads(before);
-#endif
-    return net;
-  };
-  const auto one = on_threads(1), two = on_threads(2);
-  REQUIRE(!one.vertex_labels.empty());
-  REQUIRE(!internal::angle_slots(one).slot_position.empty());
-  require_same_network(one, two);
-}
-
-TEST_CASE("make_spring_network: the same network on 1 and 2 threads", "[threads][network]")
-{
-  compare_network_threads<2>(12);
-  compare_network_threads<3>(6);
-}
-
 TEST_CASE("make_spring_network: a facet of three elements is an error", "[network][errors]")
 {
   // three tetrahedra on the triangle (0, 1, 2), and in 2D three triangles on the edge (0, 1)

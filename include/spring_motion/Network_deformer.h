@@ -107,6 +107,9 @@ public:
       else
         (roles_[i] == Vertex_role::moving ? moving_ : fixed_).push_back(i);
     }
+    is_free_.assign(n, 0);
+    for(Index i : free_)
+      is_free_[i] = 1;
     for(const auto& sv : sliding_.vertices)
       if(used[sv.vertex]) {
         sliding_vertices_.push_back(sv.vertex);
@@ -506,25 +509,31 @@ private:
     s.threads = threads;
     const std::size_t n = net_.number_of_vertices();
     auto t0 = Clock::now();
-    // The per-vertex passes of a step run on the step's threads: serial, they
-    // kept the other thread waiting at every step.
+    // The per-vertex passes of a step run on the step's threads (serial, they
+    // kept the other thread waiting at every step), one parallel region each:
+    // on a busy machine every region's end waits for a thread that may be
+    // descheduled. Every attempt writes the increment of every free, moving
+    // and fixed vertex; the others' stay 0.
     int nt = internal::thread_count(threads, n);
     const long nfree = long(free_.size());
-    delta_.resize(n);
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long i = 0; i < long(n); ++i)
-      delta_[std::size_t(i)] = Point{};
-    if(options.solver.warm_start) {
-      const double h = target - t_, m = 0.5 * (target + t_);
-      const auto w = internal::warm_start_weights(h, m, history_.h, history_.m, history_.count,
-                                                  options.solver.extrapolate);
+    if(delta_.size() != n)
+      delta_.assign(n, Point{});
+    {
+      const bool warm = options.solver.warm_start;
+      internal::Warm_start_weights w{};
+      if(warm)
+        w = internal::warm_start_weights(target - t_, 0.5 * (target + t_), history_.h, history_.m, history_.count,
+                                         options.solver.extrapolate);
 #pragma omp parallel for schedule(static) num_threads(nt)
       for(long f = 0; f < nfree; ++f) {
         const Index i = free_[std::size_t(f)];
         for(int c = 0; c < D; ++c) {
-          double v = w.weight[0] * increments_[0][i][c];
-          for(std::size_t j = 1; j < w.used; ++j)
-            v += w.weight[j] * increments_[j][i][c];
+          double v = 0;
+          if(warm) {
+            v = w.weight[0] * increments_[0][i][c];
+            for(std::size_t j = 1; j < w.used; ++j)
+              v += w.weight[j] * increments_[j][i][c];
+          }
           delta_[i][c] = v;
         }
       }
@@ -610,13 +619,12 @@ private:
     t0 = Clock::now();
     candidate_.resize(n);
 #pragma omp parallel for schedule(static) num_threads(nt)
-    for(long i = 0; i < long(n); ++i)
-      candidate_[std::size_t(i)] = positions_[std::size_t(i)];
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long f = 0; f < nfree; ++f) {
-      const Index i = free_[std::size_t(f)];
-      for(int c = 0; c < D; ++c)
-        candidate_[i][c] += delta_[i][c];
+    for(long i = 0; i < long(n); ++i) {
+      const std::size_t I = std::size_t(i);
+      candidate_[I] = positions_[I];
+      if(is_free_[I])
+        for(int c = 0; c < D; ++c)
+          candidate_[I][c] += delta_[I][c];
     }
     // constrained vertices land exactly on their prescribed positions
     for(std::size_t k = 0; k < moving_.size(); ++k)
@@ -642,17 +650,19 @@ private:
     const bool valid = failed.inverted.empty();
     if(!(agree_on_validity ? agree_on_validity(valid) : valid))
       return false;
+    // the oldest increment's storage takes the newest (only free vertices'
+    // entries are ever written: the others stay 0); the positions are
     // copied, not swapped: positions() keeps its storage for the deformer's
     // lifetime, so a view of it (the Python module's) stays valid
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long i = 0; i < long(n); ++i)
-      positions_[std::size_t(i)] = candidate_[std::size_t(i)];
-    // the oldest increment's storage takes the newest
     increments_[2].swap(increments_[1]);
     increments_[1].swap(increments_[0]);
 #pragma omp parallel for schedule(static) num_threads(nt)
-    for(long f = 0; f < nfree; ++f)
-      increments_[0][free_[std::size_t(f)]] = delta_[free_[std::size_t(f)]];
+    for(long i = 0; i < long(n); ++i) {
+      const std::size_t I = std::size_t(i);
+      positions_[I] = candidate_[I];
+      if(is_free_[I])
+        increments_[0][I] = delta_[I];
+    }
     history_.h = {target - t_, history_.h[0], history_.h[1]};
     history_.m = {0.5 * (target + t_), history_.m[0], history_.m[1]};
     ++history_.count;
@@ -664,6 +674,7 @@ private:
   Spring_network<D> net_;
   std::vector<Vertex_role> roles_;
   std::vector<Index> free_, moving_, fixed_;
+  std::vector<char> is_free_; // per vertex: 1 for those in free_
   // sliding vertices: their planes, and (those some element uses) their
   // projectors, in the form the solver takes
   internal::Sliding_set<D> sliding_;

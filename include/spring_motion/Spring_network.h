@@ -7,7 +7,6 @@
 #include <spring_motion/internal/geometry/simplex_tables.h>
 #include <spring_motion/internal/geometry/sorted_faces.h>
 #include <spring_motion/internal/solver/angle_slots.h>
-#include <spring_motion/internal/solver/threads.h>
 #include <spring_motion/mesh_traits/Simplicial_mesh_traits.h>
 
 #include <algorithm>
@@ -15,7 +14,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <exception>
 #include <limits>
 #include <numeric>
 #include <type_traits>
@@ -318,12 +316,45 @@ std::vector<std::array<Index, D>> boundary_facets(const Spring_network<D>& net)
   return facets;
 }
 
-/// make_spring_network's tables after the edges: the adjacency, the
-/// boundary facets, the vertices' labels and the longest edge.
+} // namespace internal
+
+/// Builds the network from points and elements. Throws `Error` on
+/// non-finite coordinates, vertex indices out of range, repeated vertices in
+/// an element, an empty mesh, and labeled facets that are not boundary facets.
+/// Vertices used by no element are kept (they take no part in the motion).
 template <int D>
-void finish_network_tables(Spring_network<D>& net, const std::vector<Labeled_facet<D>>& labeled_facets)
+Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
+                                      std::vector<std::array<Index, D + 1>> elements,
+                                      const std::vector<Labeled_facet<D>>& labeled_facets = {})
 {
-  const std::size_t n = net.points.size();
+  using Net = Spring_network<D>;
+  using Tables = typename Net::Tables;
+  Net net;
+  SPRING_MOTION_CHECK(!elements.empty(), "the mesh has no elements");
+  const std::size_t n = points.size();
+  SPRING_MOTION_CHECK(n < std::numeric_limits<Index>::max(), "too many vertices: " << n);
+  for(std::size_t i = 0; i < n; ++i)
+    for(int c = 0; c < D; ++c)
+      SPRING_MOTION_CHECK(std::isfinite(points[i][c]),
+                          "vertex " << i << " has a non-finite coordinate " << points[i][c]);
+  for(std::size_t t = 0; t < elements.size(); ++t)
+    for(int a = 0; a <= D; ++a) {
+      SPRING_MOTION_CHECK(elements[t][a] < n, "element " << t << " uses vertex " << elements[t][a]
+                                                          << ", out of range (" << n << " vertices)");
+      for(int b = 0; b < a; ++b)
+        SPRING_MOTION_CHECK(elements[t][a] != elements[t][b],
+                            "element " << t << " repeats vertex " << elements[t][a]);
+    }
+  net.points = std::move(points);
+  net.elements = std::move(elements);
+
+  // Edges, numbered in increasing (min, max) order.
+  {
+    std::vector<Index> rank;
+    internal::number_edges(net.elements, Tables::edge, n, net.edges, net.element_edges, rank);
+    internal::build_angle_layout(net, rank);
+  }
+
   // CSR adjacency, neighbours in increasing order.
   {
     std::vector<Index> degree(n + 1, 0);
@@ -387,68 +418,6 @@ void finish_network_tables(Spring_network<D>& net, const std::vector<Labeled_fac
   for(const auto& e : net.edges)
     net.longest_initial_edge =
         std::max(net.longest_initial_edge, internal::distance<D>(net.points[e[0]], net.points[e[1]]));
-}
-
-} // namespace internal
-
-/// Builds the network from points and elements. Throws `Error` on
-/// non-finite coordinates, vertex indices out of range, repeated vertices in
-/// an element, an empty mesh, and labeled facets that are not boundary facets.
-/// Vertices used by no element are kept (they take no part in the motion).
-template <int D>
-Spring_network<D> make_spring_network(std::vector<std::array<double, D>> points,
-                                      std::vector<std::array<Index, D + 1>> elements,
-                                      const std::vector<Labeled_facet<D>>& labeled_facets = {})
-{
-  using Net = Spring_network<D>;
-  using Tables = typename Net::Tables;
-  Net net;
-  SPRING_MOTION_CHECK(!elements.empty(), "the mesh has no elements");
-  const std::size_t n = points.size();
-  SPRING_MOTION_CHECK(n < std::numeric_limits<Index>::max(), "too many vertices: " << n);
-  for(std::size_t i = 0; i < n; ++i)
-    for(int c = 0; c < D; ++c)
-      SPRING_MOTION_CHECK(std::isfinite(points[i][c]),
-                          "vertex " << i << " has a non-finite coordinate " << points[i][c]);
-  for(std::size_t t = 0; t < elements.size(); ++t)
-    for(int a = 0; a <= D; ++a) {
-      SPRING_MOTION_CHECK(elements[t][a] < n, "element " << t << " uses vertex " << elements[t][a]
-                                                          << ", out of range (" << n << " vertices)");
-      for(int b = 0; b < a; ++b)
-        SPRING_MOTION_CHECK(elements[t][a] != elements[t][b],
-                            "element " << t << " repeats vertex " << elements[t][a]);
-    }
-  net.points = std::move(points);
-  net.elements = std::move(elements);
-
-  // Edges, numbered in increasing (min, max) order.
-  std::vector<Index> rank;
-  internal::number_edges(net.elements, Tables::edge, n, net.edges, net.element_edges, rank);
-
-  // The rest reads the edges; the angles' layout and the network's other
-  // tables are written apart, so they are made at once, one on each of two
-  // threads when there are two. An error is the one the serial order would
-  // give: the layout's first.
-  std::exception_ptr layout_error, tables_error;
-#pragma omp parallel sections num_threads(internal::thread_count(0, net.elements.size()) > 1 ? 2 : 1)
-  {
-#pragma omp section
-    try {
-      internal::build_angle_layout(net, rank);
-    } catch(...) {
-      layout_error = std::current_exception();
-    }
-#pragma omp section
-    try {
-      internal::finish_network_tables(net, labeled_facets);
-    } catch(...) {
-      tables_error = std::current_exception();
-    }
-  }
-  if(layout_error)
-    std::rethrow_exception(layout_error);
-  if(tables_error)
-    std::rethrow_exception(tables_error);
   return net;
 }
 

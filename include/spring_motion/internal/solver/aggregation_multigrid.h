@@ -314,20 +314,14 @@ public:
     factor_coarsest(v);
   }
 
-  /// level 0's right-hand side from the fine residual: sum over each
-  /// aggregate, its members in increasing order whatever the thread count
-  Row* restrict_from(const std::vector<Row>& fine_residual, int threads = 1)
+  /// level 0's right-hand side from the fine residual: sum over each aggregate
+  Row* restrict_from(const std::vector<Row>& fine_residual)
   {
     Level& c = levels_.front();
-    const long na = long(c.n);
-#pragma omp parallel for schedule(static) num_threads(thread_count(threads, fine_residual.size()))
-    for(long a = 0; a < na; ++a) {
-      Row s{};
-      for(Index m = c.member_offsets[std::size_t(a)]; m < c.member_offsets[std::size_t(a) + 1]; ++m)
-        for(int k = 0; k < D; ++k)
-          s[k] += fine_residual[c.members[m]][k];
-      c.rhs[std::size_t(a)] = s;
-    }
+    std::fill(c.rhs.begin(), c.rhs.end(), Row{});
+    for(std::size_t i = 0; i < fine_residual.size(); ++i)
+      for(int k = 0; k < D; ++k)
+        c.rhs[c.parent_of[i]][k] += fine_residual[i][k];
     return c.rhs.data();
   }
 

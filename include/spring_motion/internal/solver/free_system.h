@@ -1106,7 +1106,7 @@ private:
           z_[std::size_t(k)][c] += a * e[c];
       }
     } else {
-      multigrid_.restrict_from(s_, threads);
+      multigrid_.restrict_from(s_);
       multigrid_.cycle();
 #pragma omp parallel for schedule(static) num_threads(nt)
       for(long k = 0; k < nf; ++k) {

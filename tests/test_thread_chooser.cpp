@@ -1,10 +1,13 @@
 // The thread chooser behind Solver_options::threads = 0: it must settle on
 // the cheaper of the team and one thread, keep probing the other rarely,
-// follow a change of load, and not probe the team while one thread cannot
-// get a core of its own.
+// follow a change of load, and not run the team while one thread cannot get
+// a core of its own or other processes hold the cores the team needs.
 #include <spring_motion/internal/solver/thread_chooser.h>
 
 #include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -15,6 +18,10 @@ using spring_motion::internal::Thread_chooser;
 namespace {
 
 double full_core(int) { return 1.0; }
+
+// The free-core count not known: the choice rests on measurements alone (and
+// a test run beside other tests does not see their load).
+int unknown_cores() { return -1; }
 
 // Runs `steps` steps whose cost per unit of work is team_cost(step) with the
 // team and one_cost(step) with one thread, a one-thread step's thread running
@@ -49,7 +56,7 @@ double crowded_core(int step)
 
 TEST_CASE("thread chooser: a positive request is obeyed and nothing is measured", "[threads]")
 {
-  Thread_chooser c;
+  Thread_chooser c{unknown_cores};
   for(int i = 0; i < 5; ++i) {
     CHECK(c.next(3) == 3);
     c.record(1.0, 10);
@@ -62,7 +69,7 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
   omp_set_num_threads(2);
   SECTION("idle machine: the team is twice as fast, one thread is only probed")
   {
-    Thread_chooser c;
+    Thread_chooser c{unknown_cores};
     const int team = team_steps(c, 0, 100, [](int) { return 1.0; }, [](int) { return 2.0; });
     CHECK(team >= 94);
     CHECK(team < 100); // it did try one thread
@@ -70,7 +77,7 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
   }
   SECTION("busy machine: the team is three times slower, it is only probed")
   {
-    Thread_chooser c;
+    Thread_chooser c{unknown_cores};
     const int team = team_steps(c, 0, 100, [](int) { return 3.0; }, [](int) { return 1.0; });
     CHECK(team <= 4);
     CHECK(c.chosen() == 1);
@@ -82,14 +89,14 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
   {
     // the first step on one thread, the team once, then a clear loss (3x)
     // puts the next probe 32 steps away
-    Thread_chooser c;
+    Thread_chooser c{unknown_cores};
     CHECK(c.next(0) == 1);
     c.record(1.0, 20);
     CHECK(team_steps(c, 1, 19, [](int) { return 3.0; }, [](int) { return 1.0; }) == 1);
   }
   SECTION("the first step: its start on one thread, the rest on the team when that thread had a core")
   {
-    Thread_chooser idle;
+    Thread_chooser idle{unknown_cores};
     CHECK(idle.next(0) == 1);
     CHECK(idle.after_setup(0.05, 0.049) == 2);
     CHECK(idle.chosen() == 2);
@@ -104,7 +111,7 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
 
     // two thirds of a core: the whole first step on one thread, and its
     // share says crowded
-    Thread_chooser busy;
+    Thread_chooser busy{unknown_cores};
     CHECK(busy.next(0) == 1);
     CHECK(busy.after_setup(0.05, 0.034) == 1);
     busy.record(0.3, 20, 0.2);
@@ -112,7 +119,7 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
     CHECK(busy.next(0) == 1); // no team probe while crowded
 
     // a start too short to tell, an unknown CPU time, a requested count
-    Thread_chooser short_start, unknown, fixed;
+    Thread_chooser short_start{unknown_cores}, unknown{unknown_cores}, fixed{unknown_cores};
     CHECK(short_start.next(0) == 1);
     CHECK(short_start.after_setup(0.005, 0.005) == 1);
     CHECK(unknown.next(0) == 1);
@@ -124,14 +131,14 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
   {
     // the one-thread steps get 2/3 of a core: a team, which needs two free
     // cores, is not probed at all, though one step had a core to itself
-    Thread_chooser c;
+    Thread_chooser c{unknown_cores};
     CHECK(team_steps(c, 0, 100, [](int) { return 3.0; }, [](int) { return 1.0; }, crowded_core) == 0);
     CHECK(c.chosen() == 1);
     CHECK(c.crowded());
   }
   SECTION("a core frees up: the team is tried within a few steps and kept")
   {
-    Thread_chooser c;
+    Thread_chooser c{unknown_cores};
     CHECK(team_steps(c, 0, 20, [](int) { return 3.0; }, [](int) { return 1.0; }, crowded_core) == 0);
     // idle from step 20: the team is twice as fast
     const int team = team_steps(c, 20, 20, [](int) { return 1.0; }, [](int) { return 2.0; });
@@ -142,18 +149,18 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
   SECTION("a full core for one thread: the team is probed as before")
   {
     // one other busy process: one thread runs freely, the team stalls
-    Thread_chooser c;
+    Thread_chooser c{unknown_cores};
     CHECK(team_steps(c, 0, 20, [](int) { return 3.0; }, [](int) { return 1.0; }) == 1);
     CHECK(c.chosen() == 1);
   }
   SECTION("a close call (the team 1.5x slower) is checked again after 8 steps")
   {
-    Thread_chooser c;
+    Thread_chooser c{unknown_cores};
     CHECK(team_steps(c, 0, 12, [](int) { return 1.5; }, [](int) { return 1.0; }) == 2);
   }
   SECTION("the load comes and goes: the choice follows within the probe interval")
   {
-    Thread_chooser c;
+    Thread_chooser c{unknown_cores};
     const auto busy = [](int i) { return i >= 30 && i < 130; };
     team_steps(c, 0, 30, [](int) { return 1.0; }, [](int) { return 2.0; });
     CHECK(c.chosen() == 2);
@@ -166,6 +173,96 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
     CHECK(team_busy <= 66);
     team_steps(c, 130, 80, team_cost, one_cost);
     CHECK(c.chosen() == 2);
+  }
+  SECTION("other processes hold the cores: no team step, and the team comes back when they go")
+  {
+    // the case the CPU share cannot see: one thread alone on a core, two
+    // other processes sharing the other; every one-thread step had its core
+    int free = 0, reads = 0;
+    Thread_chooser c{[&] {
+      ++reads;
+      return free;
+    }};
+    CHECK(c.next(0) == 1);
+    CHECK(c.after_setup(0.05, 0.05) == 1); // its start had a core, the team would not
+    CHECK(reads == 2);                     // at the step's start and after its set-up
+    c.record(0.3, 20, 0.3);
+    CHECK_FALSE(c.crowded());
+    CHECK(team_steps(c, 1, 99, [](int) { return 3.0; }, [](int) { return 1.0; }) == 0);
+    CHECK(c.chosen() == 1);
+    // one core free is not enough for a team of two either
+    free = 1;
+    CHECK(team_steps(c, 100, 20, [](int) { return 3.0; }, [](int) { return 1.0; }) == 0);
+    // both cores free: the team is tried at once and kept where it is faster
+    free = 2;
+    const int team = team_steps(c, 120, 20, [](int) { return 1.0; }, [](int) { return 2.0; });
+    CHECK(team >= 18);
+    CHECK(c.chosen() == 2);
+    // the load comes back while the team is the choice: one step more on
+    // the team (its read is outvoted by the one before), then one thread
+    // while the cores are held
+    free = 0;
+    CHECK(team_steps(c, 140, 20, [](int) { return 3.0; }, [](int) { return 1.0; }) == 1);
+    // read only when a team step was about to start (twice in the first
+    // step), never more often
+    CHECK(reads <= 2 + 99 + 20 + 20 + 20);
+    CHECK(reads >= 40);
+  }
+  SECTION("a process that runs for a moment: one read is outvoted, two in a row are not")
+  {
+    std::vector<int> free = {0, 2};
+    std::size_t read = 0;
+    Thread_chooser first{[&] { return free[read++ % free.size()]; }};
+    CHECK(first.next(0) == 1);
+    CHECK(first.after_setup(0.05, 0.05) == 2); // crowded at the start only
+    read = 0;
+    free = {2, 0, 2, 2, 0, 0, 0, 2};
+    Thread_chooser c{[&] { return free[std::min(read++, free.size() - 1)]; }};
+    CHECK(c.next(0) == 1);
+    CHECK(c.after_setup(0.05, 0.05) == 2); // crowded after the set-up only
+    c.record(0.2, 20, 0.2);
+    CHECK(c.next(0) == 2); // the team's first probe: free
+    c.record(0.2, 20, 0.2);
+    CHECK(c.next(0) == 1); // the one-thread probe: not read
+    c.record(0.4, 20, 0.4);
+    CHECK(c.next(0) == 2); // free
+    c.record(0.2, 20, 0.2);
+    CHECK(c.next(0) == 2); // crowded, but the read a step before found two cores
+    c.record(0.2, 20, 0.2);
+    CHECK(c.next(0) == 1); // crowded twice in a row
+    c.record(0.4, 20, 0.4);
+    CHECK(c.next(0) == 1);
+    c.record(0.4, 20, 0.4);
+    CHECK(c.next(0) == 2); // free again
+    CHECK(read == 8);
+  }
+  SECTION("a read that says crowded after steps without reads is not outvoted")
+  {
+    // the team is probed after one-thread steps that read nothing: the load
+    // may have come since the last read
+    const std::vector<int> free = {2, 2, 2, 0};
+    std::size_t read = 0;
+    Thread_chooser c{[&] { return free[std::min(read++, free.size() - 1)]; }};
+    CHECK(c.next(0) == 1);
+    CHECK(c.after_setup(0.05, 0.05) == 2);
+    c.record(0.2, 20, 0.2);
+    CHECK(c.next(0) == 2);
+    c.record(0.6, 20, 0.6); // the team probe: three times one thread
+    int team = 0;
+    for(int i = 0; i < 40; ++i) {
+      team += c.next(0) > 1;
+      c.record(0.2, 20, 0.2);
+    }
+    // the probe fell due 32 steps after the team lost clearly (at the 34th
+    // step of the loop) and waits, reading at each step, while crowded
+    CHECK(read == 3 + 7);
+    CHECK(team == 0);
+  }
+  SECTION("free cores: the first step's solve goes to the team as before")
+  {
+    Thread_chooser c{[] { return 2; }};
+    CHECK(c.next(0) == 1);
+    CHECK(c.after_setup(0.05, 0.049) == 2);
   }
 }
 #endif

@@ -2,10 +2,13 @@
 #ifndef SPRING_MOTION_INTERNAL_SOLVER_THREAD_CHOOSER_H
 #define SPRING_MOTION_INTERNAL_SOLVER_THREAD_CHOOSER_H
 
+#include <spring_motion/internal/solver/free_cores.h>
 #include <spring_motion/internal/solver/threads.h>
 
 #include <cstddef>
+#include <functional>
 #include <limits>
+#include <utility>
 
 namespace spring_motion {
 namespace internal {
@@ -43,9 +46,26 @@ namespace internal {
 /// the one-thread steps get a core again: on a busy machine the probes,
 /// which cost about five one-thread steps each on the wing, are not run, and
 /// a core that frees up is enough to try the team again.
+///
+/// Neither measure sees the other cores while one thread runs alone on a
+/// core (the scheduler tends to leave it there, and two other processes
+/// sharing the other core): the team, then stalled, was tried at the first
+/// step's solve or the first probe and cost several one-thread steps each
+/// time. So no step goes to the team while fewer cores than its threads are
+/// free of other processes' runnable threads (free_cores(), read when a team
+/// step is about to start and at the first step's start, about 40
+/// microseconds a read): such a step runs on one thread instead, as when
+/// crowded.
 class Thread_chooser
 {
 public:
+  /// `free_cores`: the source of the count of cores that other processes
+  /// leave free (negative when not known); tests give their own.
+  explicit Thread_chooser(std::function<int()> free_cores = internal::free_cores)
+      : free_cores_(std::move(free_cores))
+  {
+  }
+
   /// The thread count for the next step: `requested` when it is positive.
   int next(int requested)
   {
@@ -54,8 +74,12 @@ public:
       return last_ = thread_count(requested);
     // one thread for the first step (not measured), the team, one thread,
     // then the cheaper with probes of the other
-    if(!warm_)
+    ++step_;
+    if(!warm_) {
+      // the first of two reads that after_setup weighs
+      team_fits();
       return last_ = 1;
+    }
     if(cost_[0] != cost_[0])
       probing_ = 0;
     else if(cost_[1] != cost_[1])
@@ -64,8 +88,9 @@ public:
       probing_ = 1 - best_;
     else
       probing_ = best_;
-    // a team tried while one thread cannot get a core of its own
-    waiting_ = probing_ == 0 && (cost_[0] != cost_[0] || best_ == 1) && crowded();
+    // a team tried while one thread cannot get a core of its own, or any
+    // team step while other processes hold the cores it needs
+    waiting_ = probing_ == 0 && (((cost_[0] != cost_[0] || best_ == 1) && crowded()) || !team_fits());
     if(waiting_)
       probing_ = 1;
     last_ = probing_ == 0 ? thread_count(0) : 1;
@@ -78,12 +103,13 @@ public:
   /// step changes: it started on one thread, and goes on with OpenMP's team
   /// when that thread ran at least `crowded_share` of the time, over at
   /// least `least_sample` seconds (a shorter start says little of the load,
-  /// and its step costs little); its sample then counts as a one-thread
-  /// step's in crowded().
+  /// and its step costs little) and the cores that other processes leave
+  /// free hold the team; its sample then counts as a one-thread step's in
+  /// crowded().
   int after_setup(double seconds, double cpu_seconds)
   {
     if(fixed_ || warm_ || last_ != 1 || cpu_seconds < 0 || seconds < least_sample
-       || cpu_seconds < crowded_share * seconds)
+       || cpu_seconds < crowded_share * seconds || !team_fits())
       return last_;
     cpu_sum_ = 0.5 * cpu_sum_ + cpu_seconds;
     wall_sum_ = 0.5 * wall_sum_ + seconds;
@@ -139,6 +165,25 @@ public:
   bool crowded() const { return cpu_sum_ < crowded_share * wall_sum_; }
 
 private:
+  // Whether the cores that other processes leave free hold a team (true
+  // when not known). Processes that run for a moment (a system daemon, this
+  // machine's monitoring) take a core in about one read of ten on an idle
+  // machine: a read that finds too few free cores is outvoted by a read in
+  // this step or the one before that found enough. Only an older read does
+  // not count (the load may have come since), and a probe then waits a step.
+  bool team_fits()
+  {
+    const int free = free_cores_();
+    const bool fits = free < 0 || free >= thread_count(0);
+    const bool fitted = read_step_ + 1 >= step_ && fit_;
+    fit_ = fits;
+    read_step_ = step_;
+    return fits || fitted;
+  }
+
+  std::function<int()> free_cores_;
+  std::size_t step_ = 0, read_step_ = 0; // next() calls; that of the last free-core read
+  bool fit_ = false;                      // what the last free-core read said
   static constexpr double unknown = std::numeric_limits<double>::quiet_NaN();
   double cost_[2] = {unknown, unknown}; // seconds per unit of work: [0] the team, [1] one thread
   double cpu_sum_ = 0, wall_sum_ = 0;   // one-thread steps' CPU and wall times, decayed

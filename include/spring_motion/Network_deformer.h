@@ -99,17 +99,16 @@ public:
     sliding_ = internal::sliding_set(net_, roles_, planes);
     planes_given_ = !planes.empty();
     const std::vector<char> solved = internal::solved_vertices(used, roles_, sliding_);
+    is_free_.assign(n, 0);
     for(Index i = 0; i < n; ++i) {
       if(!used[i])
         continue; // a vertex no element uses takes no part
-      if(solved[i])
+      if(solved[i]) {
         free_.push_back(i);
-      else
+        is_free_[i] = 1;
+      } else
         (roles_[i] == Vertex_role::moving ? moving_ : fixed_).push_back(i);
     }
-    is_free_.assign(n, 0);
-    for(Index i : free_)
-      is_free_[i] = 1;
     for(const auto& sv : sliding_.vertices)
       if(used[sv.vertex]) {
         sliding_vertices_.push_back(sv.vertex);

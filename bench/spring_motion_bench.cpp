@@ -22,6 +22,7 @@
 // written to Medit files: whole-process time, peak memory, and the wing with
 // two CPU-bound processes beside it (default threads against one thread).
 // Progress goes to stderr, the tables to stdout.
+#include <spring_motion/internal/solver/free_cores.h>
 #include <spring_motion/io/write_mesh.h>
 #include <spring_motion/spring_motion.h>
 #include <naca0012/Naca0012_mesh_2.h>
@@ -1470,6 +1471,19 @@ int main(int argc, char** argv)
   const std::vector<double> bandwidth = {triad_bandwidth(1, triad_n), triad_bandwidth(2, triad_n)};
   std::printf("SpringMotion benchmark%s. Triad bandwidth: %.2f GB/s (1 thread), %.2f GB/s (2 threads).\n",
               setup.quick ? " (--quick)" : "", bandwidth[0] * 1e-9, bandwidth[1] * 1e-9);
+  {
+    // what the thread chooser pays for each look at the other processes'
+    // load, once a team step is about to start
+    std::vector<double> us;
+    int free = -1;
+    for(int i = 0; i < 200; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      free = spring_motion::internal::free_cores();
+      us.push_back(1e6 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::printf("Free-core read (thread chooser): %.1f us (median of 200), %d core(s) free of other processes.\n",
+                median(us), free);
+  }
   if(setup.every_step_error)
     std::printf("err of the 2D cases: over the systems of every step (--every-step-error).\n");
   if(setup.omega_table) {

@@ -76,8 +76,8 @@ inline int running_threads_everywhere()
 
 /// The cores that other processes leave to this one right now: the online
 /// cores less the other processes' threads that are running or ready to run,
-/// or -1 where the platform does not tell (Linux does, about 40 microseconds
-/// a call).
+/// or -1 where the platform does not tell (Linux does, in tens of
+/// microseconds: the benchmark prints what a call costs).
 ///
 /// Why: a thread that runs alone on a core sees nothing of the other cores
 /// (the scheduler often leaves it alone on one, and two other processes

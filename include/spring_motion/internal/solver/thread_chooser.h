@@ -53,7 +53,7 @@ namespace internal {
 /// step's solve or the first probe and cost several one-thread steps each
 /// time. So no step goes to the team while fewer cores than its threads are
 /// free of other processes' runnable threads (free_cores(), read when a team
-/// step is about to start and at the first step's start, about 40
+/// step is about to start and at the first step's start, tens of
 /// microseconds a read): such a step runs on one thread instead, as when
 /// crowded.
 class Thread_chooser
@@ -166,8 +166,8 @@ public:
 
 private:
   // Whether the cores that other processes leave free hold a team (true
-  // when not known). Processes that run for a moment (a system daemon, this
-  // machine's monitoring) take a core in about one read of ten on an idle
+  // when not known). Processes that run for a moment (a system daemon, a
+  // machine's monitoring) take a core in some reads even on an idle
   // machine: a read that finds too few free cores is outvoted by a read in
   // this step or the one before that found enough. Only an older read does
   // not count (the load may have come since), and a probe then waits a step.

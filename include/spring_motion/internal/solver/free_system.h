@@ -756,8 +756,12 @@ private:
   // (backward: all in reverse), the blocks of a colour in parallel: a block
   // reads only its own rows and rows of other colours, so any schedule gives
   // the same result. `off`: the off-diagonal entries (see off_residual).
-  // `track`: return the max change. `from_zero` (forward only): x is zero,
-  // so the rows after each row, still zero when it is updated, are not read.
+  // `track`: return the max change. `from_zero` (forward only): the sweep
+  // starts from x = 0 without x being zeroed: a row reads only the rows
+  // before it in sweep order (those after it would still be zero), which
+  // this sweep has written, and its own old value is taken as 0; every row
+  // is written. That spares a pass over x and a parallel region in every
+  // preconditioner application.
   template <bool B, class V, bool Upper = false>
   double sweep(std::vector<Row>& x, const std::vector<Row>& rhs, const V* off, double omega, int threads,
                bool forward, bool track = true, bool from_zero = false)
@@ -783,12 +787,13 @@ private:
             y = block_product<D>(&inv_diag_[K * DD], s);
           if(track)
             for(int c = 0; c < D; ++c) {
+              const double old = from_zero ? 0.0 : x[K][c];
               double nv;
               if constexpr(B)
-                nv = (1 - omega) * x[K][c] + omega * y[c];
+                nv = (1 - omega) * old + omega * y[c];
               else
-                nv = (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
-              const double d = std::abs(nv - x[K][c]);
+                nv = (1 - omega) * old + omega * s[c] * inv_diag_[K];
+              const double d = std::abs(nv - old);
               // a NaN must stick: !(d <= cm) holds for NaN, which becomes +inf
               if(!(d <= cm))
                 cm = std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
@@ -796,10 +801,11 @@ private:
             }
           else
             for(int c = 0; c < D; ++c) {
+              const double old = from_zero ? 0.0 : x[K][c];
               if constexpr(B)
-                x[K][c] = omega == 1 ? y[c] : (1 - omega) * x[K][c] + omega * y[c];
+                x[K][c] = omega == 1 ? y[c] : (1 - omega) * old + omega * y[c];
               else
-                x[K][c] = omega == 1 ? s[c] * inv_diag_[K] : (1 - omega) * x[K][c] + omega * s[c] * inv_diag_[K];
+                x[K][c] = omega == 1 ? s[c] * inv_diag_[K] : (1 - omega) * old + omega * s[c] * inv_diag_[K];
             }
         }
       }
@@ -982,11 +988,6 @@ private:
   template <bool B, class V, bool Upper = false>
   void precondition(const V* off, double omega, int threads, bool multigrid)
   {
-    const int nt = team(threads);
-    const long nf = long(order_.size());
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long k = 0; k < nf; ++k)
-      z_[std::size_t(k)] = Row{};
     sweep<B, V, Upper>(z_, r_, off, omega, threads, true, false, true);
     if(multigrid)
       coarse_correction<B, V, Upper>(off, threads, omega == 1);

@@ -128,9 +128,11 @@ struct Solver_options
   /// step OpenMP's default team or one thread, whichever measures cheaper
   /// (on a machine whose cores other processes use, the team's barriers wait
   /// for descheduled threads; Network_deformer tries both, and the other
-  /// again every 8-64 steps); the final quality pass uses OpenMP's default.
-  /// The result does not depend on it: every parallel loop gives the same
-  /// numbers for any thread count.
+  /// again every 8-64 steps); the final quality pass uses OpenMP's default,
+  /// as do the checks of Network_deformer's constructor (omp_set_num_threads
+  /// caps those; `spring-motion deform --threads T` does so for the whole
+  /// run). The result does not depend on it: every parallel loop gives the
+  /// same numbers for any thread count.
   int threads = 0;
 
   /// The paper's solver exactly: SOR (Gauss-Seidel) stopped by Eq. 12 with

@@ -20,6 +20,9 @@
 
 #include <sys/resource.h>
 #endif
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
@@ -700,6 +703,20 @@ int receive_part(const Deform_settings& s, std::ostream& out, std::ostream& err)
 }
 #endif
 
+// --threads T caps every parallel region of the run at T threads, the
+// set-up's checks and the output's formatting as well as the steps: a run
+// held to one thread beside a flow solver then starts no other (an idle
+// OpenMP thread spins on its core for a while before it sleeps).
+void cap_threads(int threads)
+{
+#ifdef _OPENMP
+  if(threads > 0)
+    omp_set_num_threads(threads);
+#else
+  (void)threads;
+#endif
+}
+
 } // namespace
 
 int deform_command(const std::vector<std::string>& arguments, std::ostream& out, std::ostream& err,
@@ -711,6 +728,7 @@ int deform_command(const std::vector<std::string>& arguments, std::ostream& out,
     return exit_success;
   }
   Deform_settings s = parse_deform(a);
+  cap_threads(s.options.solver.threads);
   // Each step's quality (R, smallest angle) is shown only by the progress
   // line and the report; without either, only the final state's is (the
   // summary line), and measuring every step costs about what computing the

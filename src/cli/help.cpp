@@ -131,7 +131,8 @@ options:
                        retry an inverting step as 2, 4, ... 2^K substeps (default 0)
   --threads T          OpenMP threads (default: OpenMP's team or one thread,
                        chosen step by step by measuring both; one thread wins
-                       when other processes keep the cores busy)
+                       when other processes keep the cores busy); T caps the
+                       whole run, reading, checks and output included
   --backend NAME       shared (default): this library's solver; petsc: the
                        mesh partitioned over the MPI ranks of mpiexec -n N,
                        each step's system solved by PETSc (CG + GAMG) to the

@@ -84,7 +84,7 @@ def main():
                         times[name].append(s)
                         if threads == 0:
                             team[name] = "%d of %d" % (t, n)
-                        print("  %s %-20s %7.2f s" % (state, name, s), file=sys.stderr)
+                        print("  %s %-20s %7.3f s" % (state, name, s), file=sys.stderr)
             finally:
                 for h in hogs:
                     h.kill()
@@ -92,7 +92,7 @@ def main():
             label = state if state == "idle" else "busy (%d)" % a.hogs
             for name, _ in configs:
                 m = statistics.median(times[name])
-                print("%-10s %-22s %10.2f %14.2f %18s" % (label, name, m, m / one, team.get(name, "")))
+                print("%-10s %-22s %10.3f %14.2f %18s" % (label, name, m, m / one, team.get(name, "")))
     print("\nuptime after:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
 
 

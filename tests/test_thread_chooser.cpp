@@ -266,3 +266,27 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
   }
 }
 #endif
+
+#ifdef _OPENMP
+// A step's loops run on the count the chooser (or the caller) gives from
+// chosen_parallel_threshold items; loops at OpenMP's default (0: the set-up,
+// the output) stay serial up to parallel_threshold.
+TEST_CASE("thread counts: an explicit count shares out smaller loops than the default", "[threads]")
+{
+  using namespace spring_motion::internal;
+  omp_set_num_threads(2);
+  constexpr std::size_t chosen = chosen_parallel_threshold, fallback = parallel_threshold;
+  REQUIRE(chosen < fallback);
+  CHECK(thread_count(2, chosen) == 2);
+  CHECK(thread_count(2, chosen - 1) == 1);
+  CHECK(thread_count(1, fallback) == 1);
+  CHECK(thread_count(0, chosen) == 1);
+  CHECK(thread_count(0, fallback - 1) == 1);
+  CHECK(thread_count(0, fallback) == 2);
+  // stiffness loops: a sixteenth of the items
+  CHECK(heavy_thread_count(2, chosen / 16) == 2);
+  CHECK(heavy_thread_count(2, chosen / 16 - 1) == 1);
+  CHECK(heavy_thread_count(0, chosen / 16) == 1);
+  CHECK(heavy_thread_count(0, fallback / 16) == 2);
+}
+#endif

@@ -24,22 +24,36 @@ inline int thread_count(int requested)
 #endif
 }
 
-/// Loops over fewer items than this run on one thread: a parallel region
-/// costs more than such a loop, and far more when the cores are shared with
-/// other processes (a descheduled thread stalls the region's barrier). Results
-/// never depend on it (every parallel loop is deterministic). A constant of
-/// the build: a test program that must exercise the parallel paths on small
-/// meshes defines SPRING_MOTION_PARALLEL_THRESHOLD (to 0) before including
-/// the library.
+/// Loops over fewer items than this run on one thread when the thread count
+/// is OpenMP's default (0): a parallel region costs more than such a loop,
+/// and far more when the cores are shared with other processes (a
+/// descheduled thread stalls the region's barrier), and a default team is
+/// nobody's measured choice. A count given explicitly, by the thread chooser
+/// (a step's team, taken only where it measured cheaper and other processes
+/// leave the cores free) or by the caller, goes parallel from
+/// `chosen_parallel_threshold` items: the 2D paper mesh's 3,844 rows then
+/// share out the solver's loops (docs/performance.md, "Small loops on a
+/// chosen team"). Results never depend on either (every parallel loop is
+/// deterministic). Constants of the build: a test program that must exercise
+/// the parallel paths on small meshes defines SPRING_MOTION_PARALLEL_THRESHOLD
+/// (to 1, for both) before including the library.
 #ifndef SPRING_MOTION_PARALLEL_THRESHOLD
-#define SPRING_MOTION_PARALLEL_THRESHOLD 16384
-#endif
+constexpr std::size_t parallel_threshold = 16384;
+constexpr std::size_t chosen_parallel_threshold = 2048;
+#else
 constexpr std::size_t parallel_threshold = SPRING_MOTION_PARALLEL_THRESHOLD;
+constexpr std::size_t chosen_parallel_threshold = SPRING_MOTION_PARALLEL_THRESHOLD;
+#endif
+
+inline std::size_t threshold_for(int requested)
+{
+  return requested > 0 ? chosen_parallel_threshold : parallel_threshold;
+}
 
 /// The thread count for a loop over `items` items.
 inline int thread_count(int requested, std::size_t items)
 {
-  return items < parallel_threshold ? 1 : thread_count(requested);
+  return items < threshold_for(requested) ? 1 : thread_count(requested);
 }
 
 /// The thread count for a loop over `items` items that each cost as much as
@@ -47,7 +61,7 @@ inline int thread_count(int requested, std::size_t items)
 /// loop pays for its parallel region at a sixteenth of the items.
 inline int heavy_thread_count(int requested, std::size_t items)
 {
-  return items * 16 < parallel_threshold ? 1 : thread_count(requested);
+  return items * 16 < threshold_for(requested) ? 1 : thread_count(requested);
 }
 
 /// The CPU time of the calling thread in seconds, or -1 where the platform

@@ -264,6 +264,32 @@ TEST_CASE("thread chooser: settles on the cheaper option and follows a change of
     CHECK(c.next(0) == 1);
     CHECK(c.after_setup(0.05, 0.049) == 2);
   }
+  SECTION("short steps: a read that found the cores free holds for read_holds of steps")
+  {
+    // steps of a millisecond on the team, two on one thread (the 2D paper
+    // mesh's size): a read every step would cost several per cent
+    int free = 2, reads = 0;
+    Thread_chooser c{[&] {
+      ++reads;
+      return free;
+    }};
+    CHECK(c.next(0) == 1);
+    c.record(0.004, 20, 0.004);
+    const double ms = 0.001 / 24; // team_steps' seconds per unit of work
+    CHECK(team_steps(c, 1, 100, [&](int) { return ms; }, [&](int) { return 2 * ms; }) >= 90);
+    // one read at the first step, then one per read_holds / 1 ms team steps
+    // (one-thread probes read nothing)
+    const int per_hold = int(Thread_chooser::read_holds / 0.001 + 0.5);
+    CHECK(reads >= 1 + 90 / per_hold - 1);
+    CHECK(reads <= 1 + 100 / per_hold + 1);
+    // the load comes: the held read runs out within read_holds of steps and
+    // the team stops (one step more on the team: the held read outvotes the
+    // first crowded one)
+    free = 0;
+    const int busy_team = team_steps(c, 101, 30, [&](int) { return 3 * ms; }, [&](int) { return ms; });
+    CHECK(busy_team <= int(Thread_chooser::read_holds / 0.003) + 2);
+    CHECK(c.chosen() == 1);
+  }
 }
 #endif
 

@@ -55,7 +55,10 @@ namespace internal {
 /// free of other processes' runnable threads (free_cores(), read when a team
 /// step is about to start and at the first step's start, tens of
 /// microseconds a read): such a step runs on one thread instead, as when
-/// crowded.
+/// crowded. A read that found the cores free holds for the steps after it
+/// until they have taken `read_holds` of wall time together: a step on the
+/// 2D paper mesh takes under a millisecond, and a read every step cost it
+/// several per cent.
 class Thread_chooser
 {
 public:
@@ -90,7 +93,7 @@ public:
       probing_ = best_;
     // a team tried while one thread cannot get a core of its own, or any
     // team step while other processes hold the cores it needs
-    waiting_ = probing_ == 0 && (((cost_[0] != cost_[0] || best_ == 1) && crowded()) || !team_fits());
+    waiting_ = probing_ == 0 && (((cost_[0] != cost_[0] || best_ == 1) && crowded()) || !team_fits(true));
     if(waiting_)
       probing_ = 1;
     last_ = probing_ == 0 ? thread_count(0) : 1;
@@ -123,6 +126,7 @@ public:
   {
     if(fixed_)
       return;
+    held_ += seconds;
     if(last_ == 1 && cpu_seconds >= 0) {
       cpu_sum_ = 0.5 * cpu_sum_ + cpu_seconds;
       wall_sum_ = 0.5 * wall_sum_ + seconds;
@@ -161,6 +165,10 @@ public:
   /// The shortest start of a first step that after_setup reads, in seconds.
   static constexpr double least_sample = 0.01;
 
+  /// How long (the wall time of the steps recorded since) a free-core read
+  /// that found the team's cores free holds, in seconds.
+  static constexpr double read_holds = 0.01;
+
   /// Whether the last one-thread steps say the cores are crowded.
   bool crowded() const { return cpu_sum_ < crowded_share * wall_sum_; }
 
@@ -171,19 +179,28 @@ private:
   // machine: a read that finds too few free cores is outvoted by a read in
   // this step or the one before that found enough. Only an older read does
   // not count (the load may have come since), and a probe then waits a step.
-  bool team_fits()
+  // With `may_reuse`, a read that fitted less than read_holds ago (steps'
+  // wall time) is taken as this step's instead of reading again.
+  bool team_fits(bool may_reuse = false)
   {
+    if(may_reuse && fit_ && held_ < read_holds) {
+      read_step_ = step_;
+      return true;
+    }
     const int free = free_cores_();
     const bool fits = free < 0 || free >= thread_count(0);
     const bool fitted = read_step_ + 1 >= step_ && fit_;
     fit_ = fits;
     read_step_ = step_;
+    if(fits)
+      held_ = 0;
     return fits || fitted;
   }
 
   std::function<int()> free_cores_;
   std::size_t step_ = 0, read_step_ = 0; // next() calls; that of the last free-core read
   bool fit_ = false;                      // what the last free-core read said
+  double held_ = std::numeric_limits<double>::infinity(); // steps' seconds since the last read that fitted
   static constexpr double unknown = std::numeric_limits<double>::quiet_NaN();
   double cost_[2] = {unknown, unknown}; // seconds per unit of work: [0] the team, [1] one thread
   double cpu_sum_ = 0, wall_sum_ = 0;   // one-thread steps' CPU and wall times, decayed

@@ -64,6 +64,19 @@ inline int heavy_thread_count(int requested, std::size_t items)
   return items * 16 < threshold_for(requested) ? 1 : thread_count(requested);
 }
 
+/// Starts (or wakes) an OpenMP team of `threads` threads and returns once
+/// every one of them has run.
+inline void start_team(int threads)
+{
+#ifdef _OPENMP
+#pragma omp parallel num_threads(threads)
+  {
+  }
+#else
+  (void)threads;
+#endif
+}
+
 /// The CPU time of the calling thread in seconds, or -1 where the platform
 /// does not tell (the thread chooser then never sees crowded cores).
 inline double thread_cpu_seconds()

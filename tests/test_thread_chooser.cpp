@@ -3,14 +3,20 @@
 // follow a change of load, and not run the team while one thread cannot get
 // a core of its own or other processes hold the cores the team needs.
 #include <spring_motion/internal/solver/thread_chooser.h>
+#include <spring_motion/internal/solver/threads.h>
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <stdexcept>
+#include <thread>
 #include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
+#endif
+#ifdef __linux__
+#include <sched.h>
 #endif
 
 using spring_motion::internal::Thread_chooser;
@@ -314,5 +320,52 @@ TEST_CASE("thread counts: an explicit count shares out smaller loops than the de
   CHECK(heavy_thread_count(2, chosen / 16 - 1) == 1);
   CHECK(heavy_thread_count(0, chosen / 16) == 1);
   CHECK(heavy_thread_count(0, fallback / 16) == 2);
+}
+#endif
+
+#ifdef _OPENMP
+// The team is started (a region the compiler cannot drop: an empty one was
+// dropped, and with it the start) while the caller's own work runs on the
+// caller's thread; an exception from that work leaves the region and the
+// team usable.
+TEST_CASE("team start: the caller's work on the caller's thread while the team's threads run", "[threads]")
+{
+  using namespace spring_motion::internal;
+  omp_set_num_threads(2);
+  const std::thread::id caller = std::this_thread::get_id();
+  std::thread::id ran_on;
+  CHECK(run_while_team_starts(2, [&] { ran_on = std::this_thread::get_id(); }) == 2);
+  CHECK(ran_on == caller);
+  CHECK(start_team(2) == 2);
+  CHECK(start_team(1) == 1);
+  CHECK(start_team(0) == 2); // OpenMP's default, 2 here
+  CHECK_THROWS_AS(run_while_team_starts(2, [] { throw std::runtime_error("unreadable"); }), std::runtime_error);
+  CHECK(start_team(2) == 2);
+}
+#endif
+
+#if defined(_OPENMP) && defined(__linux__)
+// A team thread woken on its caller's core moves off it: the thread leaves
+// the core at once and keeps every core it was allowed.
+TEST_CASE("team start: a thread moved off a core leaves it and keeps its allowed cores", "[threads]")
+{
+  using namespace spring_motion::internal;
+  cpu_set_t before;
+  REQUIRE(sched_getaffinity(0, sizeof before, &before) == 0);
+  if(CPU_COUNT(&before) < 2)
+    return; // nowhere to move to
+  // The scheduler may move the thread back at any time: one of three tries
+  // must find it elsewhere right after the move (it is never elsewhere
+  // without it on an idle machine).
+  int moved = 0;
+  for(int attempt = 0; attempt < 3 && moved == 0; ++attempt) {
+    const int cpu = sched_getcpu();
+    move_off_cpu(cpu);
+    moved += sched_getcpu() != cpu;
+    cpu_set_t after;
+    REQUIRE(sched_getaffinity(0, sizeof after, &after) == 0);
+    CHECK(CPU_EQUAL(&before, &after));
+  }
+  CHECK(moved == 1);
 }
 #endif

@@ -505,9 +505,9 @@ private:
     const int threads_before = threads_.chosen();
     int threads = solver_options.threads = threads_.next(options.solver.threads);
     // A team step after one-thread steps first starts the team's threads, or
-    // wakes them (and a sleeping virtual core takes milliseconds): done before
-    // the step's clock starts, so that the thread chooser weighs the team's
-    // steps, not its start, which had made a 1 ms step cost 8 to 20.
+    // wakes them, each on a core of its own (start_team): a thread woken on
+    // this thread's core had made a 1 ms step cost 4 to 20, and the thread
+    // chooser then kept one thread for 32 steps.
     if(threads > 1 && threads_before <= 1)
       internal::start_team(threads);
     const auto attempt_start = Clock::now();

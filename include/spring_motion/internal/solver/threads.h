@@ -2,11 +2,18 @@
 #ifndef SPRING_MOTION_INTERNAL_SOLVER_THREADS_H
 #define SPRING_MOTION_INTERNAL_SOLVER_THREADS_H
 
+#include <atomic>
+#include <condition_variable>
 #include <cstddef>
+#include <exception>
+#include <mutex>
 #include <time.h>
 
 #ifdef _OPENMP
 #include <omp.h>
+#endif
+#ifdef __linux__
+#include <sched.h>
 #endif
 
 namespace spring_motion {
@@ -64,17 +71,114 @@ inline int heavy_thread_count(int requested, std::size_t items)
   return items * 16 < threshold_for(requested) ? 1 : thread_count(requested);
 }
 
-/// Starts (or wakes) an OpenMP team of `threads` threads and returns once
-/// every one of them has run.
-inline void start_team(int threads)
+// The core the calling thread runs on (-1 where not known).
+inline int current_cpu()
+{
+#ifdef __linux__
+  return sched_getcpu();
+#else
+  return -1;
+#endif
+}
+
+inline void yield_core()
+{
+#ifdef __linux__
+  sched_yield();
+#endif
+}
+
+// Moves the calling thread off `cpu`, to any other core it may run on, and
+// gives it back the cores it had (the scheduler then leaves it where it is).
+inline void move_off_cpu(int cpu)
+{
+#ifdef __linux__
+  cpu_set_t allowed, others;
+  if(cpu < 0 || cpu >= CPU_SETSIZE || sched_getaffinity(0, sizeof allowed, &allowed) != 0)
+    return;
+  others = allowed;
+  CPU_CLR(cpu, &others);
+  if(CPU_COUNT(&others) == 0 || sched_setaffinity(0, sizeof others, &others) != 0)
+    return;
+  sched_setaffinity(0, sizeof allowed, &allowed);
+#else
+  (void)cpu;
+#endif
+}
+
+/// Runs `f` on the calling thread inside a parallel region of `threads`
+/// threads (OpenMP's default when 0) whose other threads do nothing, and
+/// returns the count of threads that ran the region, once all have. Why: a
+/// team's threads start the first time a region asks for them, and that
+/// start took 0.3 to 28 ms on a 2-vCPU virtual machine, against tens of
+/// microseconds to wake them later; serial work given as `f` (reading the
+/// mesh) hides it. An exception from `f` is thrown again after the region.
+///
+/// A thread found on the core of the calling thread moves off it, while
+/// the calling thread yields its core until each has. On a virtual machine
+/// Linux counts an idle virtual core that the host has descheduled as busy,
+/// and so may start or wake a team thread on the core of the thread that
+/// asked for it; the two then take turns on that core, 4 ms (a scheduler
+/// tick) at a time, until the load balancer moves one: 4 to 20 ms for the
+/// first team step after one-thread steps on the 2D paper mesh, whose steps
+/// take 1 ms.
+template <class F>
+int run_while_team_starts(int threads, F&& f)
 {
 #ifdef _OPENMP
-#pragma omp parallel num_threads(threads)
-  {
+  const int team = thread_count(threads);
+  if(team > 1) {
+    std::atomic<int> arrived{0}, placed{0};
+    int caller_cpu = -1;
+    bool caller_done = false;
+    std::mutex m;
+    std::condition_variable done;
+    std::exception_ptr error;
+#pragma omp parallel num_threads(team)
+    {
+      const int others = omp_get_num_threads() - 1;
+      if(omp_get_thread_num() == 0) {
+        try {
+          f();
+        } catch(...) {
+          error = std::current_exception();
+        }
+        {
+          const std::lock_guard<std::mutex> lock(m);
+          caller_cpu = current_cpu();
+          caller_done = true;
+        }
+        done.notify_all();
+        while(placed.load() < others)
+          yield_core();
+      } else {
+        ++arrived;
+        // asleep while `f` runs (reading a large mesh takes seconds)
+        std::unique_lock<std::mutex> lock(m);
+        done.wait(lock, [&] { return caller_done; });
+        const int cpu = caller_cpu;
+        lock.unlock();
+        if(cpu >= 0 && current_cpu() == cpu)
+          move_off_cpu(cpu);
+        ++placed;
+      }
+    }
+    if(error)
+      std::rethrow_exception(error);
+    return arrived.load() + 1;
   }
 #else
   (void)threads;
 #endif
+  f();
+  return 1;
+}
+
+/// Starts (or wakes) an OpenMP team of `threads` threads and returns the
+/// count that ran, once every one of them has.
+inline int start_team(int threads)
+{
+  return run_while_team_starts(threads, [] {});
 }
 
 /// The CPU time of the calling thread in seconds, or -1 where the platform

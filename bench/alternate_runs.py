@@ -1,0 +1,54 @@
+#!/usr/bin/python3
+# Copyright (c) 2026 SpringMotion developers.
+"""Whole-process time of two `spring-motion` builds on the same command,
+run in turns (old, new, old, new, ...) so that a shared machine's changing
+load falls on both alike.
+
+    bench/alternate_runs.py OLD_CLI NEW_CLI [--rounds 20] -- DEFORM_ARGS...
+
+DEFORM_ARGS follow `spring-motion`, for instance
+`deform MESH --moving 1 --pitch 45 --center 0.25,0 --steps 100 --quiet
+--output o.vtu`. Prints `uptime` before and after, then each build's median,
+minimum and maximum wall time and the ratio of the medians (new / old).
+A run that fails stops the script with its exit status.
+"""
+import argparse
+import statistics
+import subprocess
+import sys
+import time
+
+
+def main():
+    argv = sys.argv[1:]
+    if "--" not in argv:
+        sys.exit("usage: alternate_runs.py OLD_CLI NEW_CLI [--rounds N] -- DEFORM_ARGS...")
+    split = argv.index("--")
+    parser = argparse.ArgumentParser()
+    parser.add_argument("old")
+    parser.add_argument("new")
+    parser.add_argument("--rounds", type=int, default=20)
+    args = parser.parse_args(argv[:split])
+    command = argv[split + 1:]
+    print("before:", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
+    times = {"old": [], "new": []}
+    for _ in range(args.rounds):
+        for label in ("old", "new"):
+            start = time.perf_counter()
+            run = subprocess.run([getattr(args, label)] + command, stdout=subprocess.DEVNULL,
+                                 stderr=subprocess.PIPE, text=True)
+            elapsed = time.perf_counter() - start
+            if run.returncode != 0:
+                sys.stderr.write(run.stderr)
+                sys.exit(f"{label} build failed with exit status {run.returncode}")
+            times[label].append(elapsed)
+    print("after: ", subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip())
+    for label in ("old", "new"):
+        t = times[label]
+        print(f"{label}  median {1e3 * statistics.median(t):8.1f} ms  min {1e3 * min(t):8.1f}  "
+              f"max {1e3 * max(t):8.1f}  ({len(t)} runs)")
+    print(f"new / old (medians): {statistics.median(times['new']) / statistics.median(times['old']):.3f}")
+
+
+if __name__ == "__main__":
+    main()

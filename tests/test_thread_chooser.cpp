@@ -369,3 +369,35 @@ TEST_CASE("team start: a thread moved off a core leaves it and keeps its allowed
   CHECK(moved == 1);
 }
 #endif
+
+#ifdef _OPENMP
+// One slow step of the choice (another process's moment on a core) must not
+// send a run to the other option for a probe interval; two in a row must.
+TEST_CASE("thread chooser: one dearer step of the choice does not change it, two in a row do", "[threads]")
+{
+  omp_set_num_threads(2);
+  SECTION("one slow team step among fast ones: the team stays the choice")
+  {
+    Thread_chooser c{unknown_cores};
+    // the team twice as fast, but step 40 takes four times a team step
+    const int team = team_steps(c, 0, 100, [](int i) { return i == 40 ? 4.0 : 1.0; }, [](int) { return 2.0; });
+    CHECK(team >= 94);
+    CHECK(c.chosen() == 2);
+  }
+  SECTION("two slow team steps in a row: one thread from the second")
+  {
+    Thread_chooser c{unknown_cores};
+    CHECK(team_steps(c, 0, 40, [](int) { return 1.0; }, [](int) { return 2.0; }) >= 36);
+    CHECK(c.chosen() == 2);
+    // the load comes for good: the team costs 8 (a clear loss), one thread 2
+    int team = 0;
+    for(int i = 0; i < 4; ++i) {
+      const bool is_team = c.next(0) > 1;
+      team += is_team;
+      c.record((is_team ? 8.0 : 2.0) * 24, 20, is_team ? 8.0 * 24 : 2.0 * 24);
+    }
+    CHECK(team == 2);
+    CHECK(c.chosen() == 1);
+  }
+}
+#endif

@@ -29,12 +29,17 @@ namespace internal {
 /// within a few steps when the load changes. When the choice changes the
 /// interval starts again at 8, or at 32 when one option cost at least twice
 /// the other: a team stalled by a busy machine costs several times one
-/// thread, and each probe of it costs as much again. The first step, which
-/// also builds the solver's state and so is not measured, starts on one
-/// thread: on a busy machine a team step costs several one-thread steps.
-/// Its solve, the costliest of the run (a cold start), and its check go to
-/// the team when that start (stiffness and the solver's set-up, tens of
-/// milliseconds on the wing) had a core to itself: see after_setup.
+/// thread, and each probe of it costs as much again. A step of the choice
+/// that costs more than the other option's last measure changes the choice
+/// only when the step before it did too: one slow step (another process's
+/// moment on a core, a virtual core's pause: 2.6 to 4.7 ms against 0.8 on
+/// the 2D paper mesh) had sent that case to one thread for 32 steps. The
+/// first step, which also builds the solver's state and so is not measured,
+/// starts on one thread: on a busy machine a team step costs several
+/// one-thread steps. Its solve, the costliest of the run (a cold start), and
+/// its check go to the team when that start (stiffness and the solver's
+/// set-up, tens of milliseconds on the wing) had a core to itself: see
+/// after_setup.
 ///
 /// One-thread steps also say whether the cores are crowded without trying
 /// the team: the share of their wall time the thread ran on a core (its CPU
@@ -141,14 +146,23 @@ public:
       cost_[1] = seconds / (double(iterations) + 4);
       return;
     }
-    cost_[probing_] = seconds / (double(iterations) + 4);
-    if(probing_ != best_)
-      since_probe_ = 0;
-    else
+    const double cost = seconds / (double(iterations) + 4);
+    if(probing_ == best_) {
       ++since_probe_;
+      // one dearer step of the choice is not measured: the second in a row is
+      const bool dearer = cost > cost_[1 - best_];
+      dearer_ = dearer ? dearer_ + 1 : 0;
+      if(dearer_ == 1)
+        return;
+    } else {
+      since_probe_ = 0;
+      dearer_ = 0;
+    }
+    cost_[probing_] = cost;
     const int cheaper = cost_[1] == cost_[1] && cost_[1] < cost_[0] ? 1 : 0;
     if(cheaper != best_) {
       best_ = cheaper;
+      dearer_ = 0;
       const bool clear = cost_[1 - cheaper] >= 2 * cost_[cheaper];
       interval_ = clear ? 32 : 8;
     } else if(probing_ != best_ && interval_ < 64)
@@ -206,6 +220,7 @@ private:
   double cpu_sum_ = 0, wall_sum_ = 0;   // one-thread steps' CPU and wall times, decayed
   int best_ = 0, probing_ = 0, last_ = 0;
   std::size_t since_probe_ = 0, interval_ = 8;
+  int dearer_ = 0; // steps in a row of the choice that cost more than the other option
   bool fixed_ = true, warm_ = false, waiting_ = false;
 };
 

@@ -109,10 +109,10 @@ inline void move_off_cpu(int cpu)
 /// Runs `f` on the calling thread inside a parallel region of `threads`
 /// threads (OpenMP's default when 0) whose other threads do nothing, and
 /// returns the count of threads that ran the region, once all have. Why: a
-/// team's threads start the first time a region asks for them, and that
-/// start took 0.3 to 28 ms on a 2-vCPU virtual machine, against tens of
-/// microseconds to wake them later; serial work given as `f` (reading the
-/// mesh) hides it. An exception from `f` is thrown again after the region.
+/// team's threads start the first time a region asks for them, which can
+/// take milliseconds (a new thread may wait for a scheduler tick); serial
+/// work given as `f` (reading the mesh) hides it. An exception from `f` is
+/// thrown again after the region.
 ///
 /// A thread found on the core of the calling thread moves off it, while
 /// the calling thread yields its core until each has. On a virtual machine

@@ -68,13 +68,48 @@ double ns_per_element(const Model& model, const std::vector<Simplex<D>>& el, int
   return 1e9 * times[times.size() / 2] / double(el.size());
 }
 
+// The same through add_symmetric_blocks_of_two, two simplices per call
+// (the assembly's form when the model has it); 0 when it has not.
+template <int D, class Model>
+double ns_per_element_in_twos(const Model& model, const std::vector<Simplex<D>>& el, int repetitions)
+{
+  if constexpr(!sm::internal::Has_symmetric_blocks_of_two<Model, D>::value)
+    return 0;
+  else {
+    constexpr int size = (D + 1) * (D + 2) / 2 * D * (D + 1) / 2;
+    std::vector<double> times;
+    double sink = 0;
+    for(int r = 0; r < repetitions; ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      for(std::size_t k = 0; k + 1 < el.size(); k += 2) {
+        std::array<double, size> K{}, L{};
+        if(!model.add_symmetric_blocks_of_two(el[k], el[k + 1], K.data(), L.data())) {
+          model.add_symmetric_blocks(el[k], K.data());
+          model.add_symmetric_blocks(el[k + 1], L.data());
+        }
+        sink += K[0] + L[0];
+      }
+      times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    if(sink == 0.125)
+      std::puts("");
+    std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
+    return 1e9 * times[times.size() / 2] / double(el.size());
+  }
+}
+
 template <class Model>
 void row(const char* name, const Model& model, int repetitions)
 {
   static const auto triangles = simplices<2>(20000);
   static const auto tetrahedra = simplices<3>(20000);
-  std::printf("%-26s %12.1f %14.1f\n", name, ns_per_element<2>(model, triangles, repetitions),
+  std::printf("%-26s %12.1f %14.1f", name, ns_per_element<2>(model, triangles, repetitions),
               ns_per_element<3>(model, tetrahedra, repetitions));
+  const double two_2 = ns_per_element_in_twos<2>(model, triangles, repetitions);
+  if(two_2 > 0)
+    std::printf(" %12.1f %14.1f\n", two_2, ns_per_element_in_twos<3>(model, tetrahedra, repetitions));
+  else
+    std::printf(" %12s %14s\n", "-", "-");
 }
 
 } // namespace
@@ -91,8 +126,9 @@ int main(int argc, char** argv)
     }
   }
   std::printf("Element kernels, one thread, 20000 random simplices, median of %d repetitions:\n"
-              "%-26s %12s %14s\n",
-              repetitions, "model", "ns/triangle", "ns/tetrahedron");
+              "(in twos: two simplices per call, the assembly's form where the model has it)\n"
+              "%-26s %12s %14s %12s %14s\n",
+              repetitions, "model", "ns/triangle", "ns/tetrahedron", "in twos", "in twos");
   sm::Ball_vertex_stiffness p1, p2, p3;
   p2.exponent = 2;
   p3.exponent = 3;

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -645,6 +646,94 @@ TEST_CASE("ball-vertex: the distinct blocks the assembly reads are the element m
   CHECK(internal::Has_symmetric_blocks<With_ball_vertex<Lineal_stiffness>, 2>::value);
   CHECK_FALSE(internal::Has_symmetric_blocks<Torsional_stiffness, 2>::value);
   CHECK_FALSE(internal::Has_symmetric_blocks<Torsional_stiffness, 3>::value);
+}
+
+namespace {
+
+// add_symmetric_blocks_of_two(p, q) against add_symmetric_blocks on each,
+// both added to the same non-zero start; returns whether the pair form was
+// taken (false: S and T must be as they were).
+template <int D, class Model>
+bool check_blocks_of_two(const Model& model, const Simplex<D>& p, const Simplex<D>& q, std::mt19937& rng)
+{
+  const std::size_t n = (D + 1) * (D + 2) / 2 * D * (D + 1) / 2;
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> start(2 * n);
+  for(double& x : start)
+    x = u(rng);
+  std::vector<double> S(start.begin(), start.begin() + long(n)), T(start.begin() + long(n), start.end());
+  const bool taken = model.add_symmetric_blocks_of_two(p, q, S.data(), T.data());
+  if(!taken) {
+    CHECK(S == std::vector<double>(start.begin(), start.begin() + long(n)));
+    CHECK(T == std::vector<double>(start.begin() + long(n), start.end()));
+    return false;
+  }
+  std::vector<double> one(start.begin(), start.begin() + long(n)), other(start.begin() + long(n), start.end());
+  model.add_symmetric_blocks(p, one.data());
+  model.add_symmetric_blocks(q, other.data());
+  for(std::size_t k = 0; k < n; ++k) { // the same bits, not just close
+    CHECK(std::memcmp(&S[k], &one[k], sizeof(double)) == 0);
+    CHECK(std::memcmp(&T[k], &other[k], sizeof(double)) == 0);
+  }
+  return true;
+}
+
+template <int D>
+Simplex<D> scaled(Simplex<D> p, double f)
+{
+  for(auto& x : p)
+    for(double& c : x)
+      c *= f;
+  return p;
+}
+
+} // namespace
+
+TEST_CASE("ball-vertex: two simplices at once give each one's distinct blocks, bit for bit",
+          "[stiffness][ball_vertex]")
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto random_simplex = [&](auto dimension) {
+    constexpr int D = decltype(dimension)::value;
+    Simplex<D> p;
+    for(auto& x : p)
+      for(double& c : x)
+        c = u(rng);
+    return p;
+  };
+  using Two = std::integral_constant<int, 2>;
+  using Three = std::integral_constant<int, 3>;
+  for(double exponent : {1.0, 2.0, 3.0}) {
+    Ball_vertex_stiffness m;
+    m.exponent = exponent;
+    m.weight = 0.7;
+    const With_ball_vertex<Grid_scaled_stiffness> combined{{}, m};
+    int taken = 0;
+    for(int trial = 0; trial < 300; ++trial) {
+      taken += check_blocks_of_two<2>(m, random_simplex(Two{}), random_simplex(Two{}), rng);
+      taken += check_blocks_of_two<3>(m, random_simplex(Three{}), random_simplex(Three{}), rng);
+    }
+    CHECK(taken == 600); // ordinary simplices take the pair form
+    CHECK(check_blocks_of_two<2>(combined, triangle, obtuse_triangle, rng));
+    CHECK(check_blocks_of_two<3>(combined, sliver, tetrahedron, rng));
+    // either lane outside the uncapped range, flat, or with a tiny edge:
+    // declined, whichever lane it is
+    for(const double f : {1e-60, 1e-200, 1e160}) {
+      CHECK_FALSE(check_blocks_of_two<2>(m, scaled<2>(triangle, f), triangle, rng));
+      CHECK_FALSE(check_blocks_of_two<3>(m, tetrahedron, scaled<3>(sliver, f), rng));
+    }
+    const Simplex<2> flat{{{0, 0}, {1, 0}, {2, 0}}};
+    const Simplex<3> tiny_edge{{{0, 0, 0}, {1e-60, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    CHECK_FALSE(check_blocks_of_two<2>(m, triangle, flat, rng));
+    CHECK_FALSE(check_blocks_of_two<3>(m, tiny_edge, tetrahedron, rng));
+  }
+  Ball_vertex_stiffness other_power;
+  other_power.exponent = 1.5;
+  CHECK_FALSE(check_blocks_of_two<2>(other_power, triangle, obtuse_triangle, rng));
+  CHECK_FALSE(check_blocks_of_two<3>(other_power, tetrahedron, sliver, rng));
+  CHECK(internal::Has_symmetric_blocks_of_two<With_ball_vertex<Lineal_stiffness>, 3>::value);
+  CHECK_FALSE(internal::Has_symmetric_blocks_of_two<Torsional_stiffness, 2>::value);
 }
 
 namespace {

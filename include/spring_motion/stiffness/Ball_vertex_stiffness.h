@@ -5,8 +5,10 @@
 #include <spring_motion/Error.h>
 #include <spring_motion/internal/geometry/angles.h>
 #include <spring_motion/internal/geometry/capped_math.h>
+#include <spring_motion/internal/geometry/double_pair.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -125,6 +127,24 @@ struct Ball_vertex_stiffness
   void add_symmetric_blocks(const std::array<std::array<double, 3>, 4>& p, double* S) const
   {
     blocks<3>(p, [&](int, int, int, int, int m, int pair, double b) { S[pair * 6 + m] += b; });
+  }
+
+  /// add_symmetric_blocks for two simplices at once, p's values to S and q's
+  /// to T: the same values, the two simplices' arithmetic in the two lanes
+  /// of one register. Returns false, leaving S and T as they were, when
+  /// either needs what only the one-simplex form does (an edge or a facet
+  /// too small, a stiffness outside the range where it is not capped, an
+  /// exponent other than 1, 2 or 3): call add_symmetric_blocks for each,
+  /// which also reports what is wrong.
+  bool add_symmetric_blocks_of_two(const std::array<std::array<double, 2>, 3>& p,
+                                   const std::array<std::array<double, 2>, 3>& q, double* S, double* T) const
+  {
+    return blocks_of_two<2>(p, q, S, T);
+  }
+  bool add_symmetric_blocks_of_two(const std::array<std::array<double, 3>, 4>& p,
+                                   const std::array<std::array<double, 3>, 4>& q, double* S, double* T) const
+  {
+    return blocks_of_two<3>(p, q, S, T);
   }
 
   Model_description description(int) const
@@ -286,6 +306,149 @@ private:
           for(int q = r; q < D; ++q, ++m)
             out(v, w, r, q, m, pair, B[std::size_t(pair)][std::size_t(m)]);
   }
+
+#if SPRING_MOTION_HAS_DOUBLE_PAIR
+  // blocks() on two simplices, one per lane, its path for capped-free
+  // stiffness only: every lane runs blocks()'s operations in its order
+  // (sums from 0 in the same order, the same products grouped alike), so
+  // each gets the same bits; the tests compare them. Whether both take that
+  // path is decided first, lane by lane, by blocks()'s own tests.
+  template <int D>
+  bool blocks_of_two(const std::array<std::array<double, D>, D + 1>& p0,
+                     const std::array<std::array<double, D>, D + 1>& p1, double* S0, double* S1) const
+  {
+    using T = internal::Double_pair;
+    constexpr int S = D * (D + 1) / 2;
+    const int power = exponent == 1 ? 1 : exponent == 2 ? 2 : exponent == 3 ? 3 : 0;
+    if(power == 0)
+      return false;
+    using Vector = std::array<T, D>;
+    auto sub = [](const Vector& a, const Vector& b) {
+      Vector r;
+      for(int c = 0; c < D; ++c)
+        r[std::size_t(c)] = a[std::size_t(c)] - b[std::size_t(c)];
+      return r;
+    };
+    auto dot = [](const Vector& a, const Vector& b) {
+      T s = internal::lanes_of<T>(0.0);
+      for(int c = 0; c < D; ++c)
+        s += a[std::size_t(c)] * b[std::size_t(c)];
+      return s;
+    };
+    std::array<Vector, D + 1> p;
+    for(std::size_t v = 0; v <= D; ++v)
+      for(std::size_t c = 0; c < D; ++c)
+        p[v][c] = T{p0[v][c], p1[v][c]};
+    for(int a = 0; a <= D; ++a)
+      for(int b = a + 1; b <= D; ++b) {
+        const auto e = sub(p[std::size_t(b)], p[std::size_t(a)]);
+        const auto fits = dot(e, e) >= internal::lanes_of<T>(1e-100);
+        if(!(fits[0] && fits[1]))
+          return false;
+      }
+    std::array<Vector, D + 1> N;
+    T measure;
+    if constexpr(D == 2) {
+      for(int i = 0; i < 3; ++i) {
+        const auto& j = p[std::size_t((i + 1) % 3)];
+        const auto& l = p[std::size_t((i + 2) % 3)];
+        N[std::size_t(i)] = {l[1] - j[1], j[0] - l[0]};
+      }
+      measure = dot(sub(p[0], p[1]), N[0]);
+    } else {
+      auto cross = [](const Vector& a, const Vector& b) -> Vector {
+        return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+      };
+      const auto e1 = sub(p[1], p[0]), e2 = sub(p[2], p[0]), e3 = sub(p[3], p[0]);
+      N = {cross(sub(p[3], p[1]), sub(p[2], p[1])), cross(e2, e3), cross(e3, e1), cross(e1, e2)};
+      measure = dot(e1, N[1]);
+    }
+    std::array<std::array<T, D + 1>, D + 1> G;
+    for(std::size_t i = 0; i <= D; ++i)
+      for(std::size_t j = i; j <= D; ++j)
+        G[i][j] = G[j][i] = dot(N[i], N[j]);
+    const T volume = internal::lane_abs(measure);
+    for(int t = 0; t < 2; ++t) { // blocks()'s tests for its uncapped path, per lane
+      const double v = volume[t];
+      const int vexp = internal::binary_exponent(v);
+      if(!(v > 0 && power * (std::abs(vexp) + 1) < 1000))
+        return false;
+      for(std::size_t i = 0; i <= D; ++i) {
+        const double NN = G[i][i][t];
+        if(!(NN > 0 && std::isfinite(NN)))
+          return false;
+        const int hexp = vexp - internal::binary_exponent(NN) / 2;
+        if(!(power * (std::abs(hexp) + 3) < 790))
+          return false;
+      }
+    }
+    const T one = internal::lanes_of<T>(1.0);
+    const T inverse_power =
+        one / (power == 1 ? volume : power == 2 ? volume * volume : volume * volume * volume);
+    if(!(inverse_power[0] > 0 && inverse_power[1] > 0))
+      return false;
+    std::array<std::array<T, S>, D + 1> knn;
+    std::array<T, D + 1> inverse_NN;
+#pragma GCC unroll 4
+    for(std::size_t i = 0; i <= D; ++i) {
+      const auto& n = N[i];
+      const T NN = G[i][i];
+      inverse_NN[i] = one / NN;
+      T g = internal::lanes_of<T>(weight) * inverse_power;
+      if(power != 2) {
+        const T len = {std::sqrt(NN[0]), std::sqrt(NN[1])};
+        g = power == 1 ? g / len : g * len;
+      }
+      for(std::size_t r = 0, m = 0; r < D; ++r)
+        for(std::size_t q = r; q < D; ++q, ++m)
+          knn[i][m] = g * n[r] * n[q];
+    }
+    auto c = [&](int i, int v) {
+      return v == i ? one : G[std::size_t(i)][std::size_t(v)] * inverse_NN[std::size_t(i)];
+    };
+    constexpr int pairs = (D + 1) * (D + 2) / 2;
+    auto pair_of = [](int v, int w) { return v * (2 * D + 3 - v) / 2 + (w - v); };
+    std::array<std::array<T, S>, pairs> B;
+    for(auto& b : B)
+      b.fill(internal::lanes_of<T>(0.0));
+#pragma GCC unroll 4
+    for(int v = 0; v < D; ++v)
+#pragma GCC unroll 4
+      for(int w = v; w < D; ++w) {
+        auto& b = B[std::size_t(pair_of(v, w))];
+#pragma GCC unroll 4
+        for(int i = 0; i <= D; ++i) {
+          const T f = c(i, v) * c(i, w);
+          for(int m = 0; m < S; ++m)
+            b[std::size_t(m)] += f * knn[std::size_t(i)][std::size_t(m)];
+        }
+      }
+#pragma GCC unroll 4
+    for(int v = 0; v <= D; ++v) {
+      auto& last = B[std::size_t(pair_of(v, D))];
+#pragma GCC unroll 4
+      for(int w = 0; w < D; ++w) {
+        const auto& b = B[std::size_t(v == D ? pair_of(w, D) : pair_of(std::min(v, w), std::max(v, w)))];
+        for(int m = 0; m < S; ++m)
+          last[std::size_t(m)] -= b[std::size_t(m)];
+      }
+    }
+#pragma GCC unroll 10
+    for(std::size_t u = 0; u < std::size_t(pairs); ++u)
+      for(std::size_t m = 0; m < std::size_t(S); ++m) {
+        S0[u * S + m] += B[u][m][0];
+        S1[u * S + m] += B[u][m][1];
+      }
+    return true;
+  }
+#else
+  template <int D>
+  bool blocks_of_two(const std::array<std::array<double, D>, D + 1>&, const std::array<std::array<double, D>, D + 1>&,
+                     double*, double*) const
+  {
+    return false;
+  }
+#endif
 
   // K += the whole matrix, each distinct value written to its places
   template <int D>

@@ -204,41 +204,43 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
   }
 }
 
-// Adds the matrix of network element t, corners p, through its (D+1)^2
-// destinations `to` (none: a constrained vertex's row); a failure is kept if
-// t is the smallest so far.
-template <int D, class Model>
-void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const Model& model, std::size_t t,
-                        const Index* to, double* blocks, long& first_bad, std::exception_ptr& error)
+// Whether element t's values Ke are all finite; if not, the failure is
+// kept if t is the smallest failing element so far.
+template <std::size_t N>
+bool finite_or_kept(const std::array<double, N>& Ke, std::size_t t, long& first_bad, std::exception_ptr& error)
 {
-  constexpr int DD = D * D;
-  constexpr int ND = (D + 1) * D;
-  // a model that gives only the distinct blocks (Has_symmetric_blocks)
-  // fills the 60 values of a tetrahedron, not the 144 of its whole matrix;
-  // each block is then read from them (the same values as from the whole
-  // matrix, which holds each distinct value once per place)
-  constexpr bool symmetric = Has_symmetric_blocks<Model, D>::value;
-  constexpr int S = D * (D + 1) / 2;
-  constexpr int size = symmetric ? (D + 1) * (D + 2) / 2 * S : ND * ND;
-  std::array<double, size> Ke;
-  Ke.fill(0.0);
   try {
-    if constexpr(symmetric)
-      model.add_symmetric_blocks(p, Ke.data());
-    else
-      model.add_element_matrix(p, Ke.data());
     // all of it, rows of constrained vertices too: a model that breaks
     // there breaks elsewhere on another step
     SPRING_MOTION_ELEMENT_CHECK(all_finite(Ke.data(), Ke.size()), t,
                                 "element stiffness of element " << t << " is not finite");
+    return true;
   } catch(...) {
 #pragma omp critical(spring_motion_element_matrix_error)
     if(long(t) < first_bad) {
       first_bad = long(t);
       error = std::current_exception();
     }
-    return;
+    return false;
   }
+}
+
+// What a model gives for one element: the distinct blocks (a model with
+// Has_symmetric_blocks: the 60 values of a tetrahedron, not the 144 of its
+// whole matrix) or the whole matrix.
+template <int D, class Model>
+using Element_values = std::array<double, Has_symmetric_blocks<Model, D>::value
+                                              ? (D + 1) * (D + 2) / 2 * (D * (D + 1) / 2)
+                                              : (D + 1) * D * (D + 1) * D>;
+
+// Adds element values Ke to the blocks through the element's (D+1)^2
+// destinations `to` (none: a constrained vertex's row).
+template <int D, class Model>
+void scatter_element_values(const Element_values<D, Model>& Ke, const Index* to, double* blocks)
+{
+  constexpr int DD = D * D;
+  constexpr int ND = (D + 1) * D;
+  constexpr int S = D * (D + 1) / 2;
   auto add_to = [&](Index dest, const std::array<double, DD>& block) {
     if(dest == Free_system<D>::none)
       return;
@@ -246,11 +248,13 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
     for(int k = 0; k < DD; ++k)
       out[k] += block[std::size_t(k)];
   };
-  if constexpr(symmetric) {
+  if constexpr(Has_symmetric_blocks<Model, D>::value) {
     // distinct block u = (a, b), a <= b, goes to (a, b) and to (b, a):
-    // expanded from its upper triangle once for both. Unrolled: left to
-    // itself the compiler kept the tetrahedron's ten pairs a run-time loop
-    // (16% more instructions in the scatter, valgrind's count)
+    // expanded from its upper triangle once for both (each block is read
+    // from them with the same values as from the whole matrix, which holds
+    // each distinct value once per place). Unrolled: left to itself the
+    // compiler kept the tetrahedron's ten pairs a run-time loop (16% more
+    // instructions in the scatter, valgrind's count)
     int u = 0;
 #pragma GCC unroll 4
     for(int a = 0; a <= D; ++a)
@@ -273,6 +277,54 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
             block[std::size_t(r * D + c)] = Ke[std::size_t((a * D + r) * ND + (b * D + c))];
         add_to(to[a * (D + 1) + b], block);
       }
+}
+
+// Adds the matrix of network element t, corners p, through its (D+1)^2
+// destinations `to`; a failure is kept if t is the smallest so far.
+template <int D, class Model>
+void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const Model& model, std::size_t t,
+                        const Index* to, double* blocks, long& first_bad, std::exception_ptr& error)
+{
+  Element_values<D, Model> Ke;
+  Ke.fill(0.0);
+  try {
+    if constexpr(Has_symmetric_blocks<Model, D>::value)
+      model.add_symmetric_blocks(p, Ke.data());
+    else
+      model.add_element_matrix(p, Ke.data());
+  } catch(...) {
+#pragma omp critical(spring_motion_element_matrix_error)
+    if(long(t) < first_bad) {
+      first_bad = long(t);
+      error = std::current_exception();
+    }
+    return;
+  }
+  if(finite_or_kept(Ke, t, first_bad, error))
+    scatter_element_values<D, Model>(Ke, to, blocks);
+}
+
+// The same for elements t and u at once (Has_symmetric_blocks_of_two: the
+// model's arithmetic for both in one register); false, with nothing added,
+// when the model declines the pair: then each takes add_element_matrix.
+// Each element's blocks are added as add_element_matrix adds them, t's
+// first: the same sums in the same order.
+template <int D, class Model>
+bool add_element_matrices_of_two(const std::array<std::array<double, D>, D + 1>& p,
+                                 const std::array<std::array<double, D>, D + 1>& q, const Model& model, std::size_t t,
+                                 std::size_t u, const Index* to_t, const Index* to_u, double* blocks, long& first_bad,
+                                 std::exception_ptr& error)
+{
+  Element_values<D, Model> Kt, Ku;
+  Kt.fill(0.0);
+  Ku.fill(0.0);
+  if(!model.add_symmetric_blocks_of_two(p, q, Kt.data(), Ku.data()))
+    return false;
+  if(finite_or_kept(Kt, t, first_bad, error))
+    scatter_element_values<D, Model>(Kt, to_t, blocks);
+  if(finite_or_kept(Ku, u, first_bad, error))
+    scatter_element_values<D, Model>(Ku, to_u, blocks);
+  return true;
 }
 
 // The element's blocks lie in the rows of its D + 1 vertices, which belong
@@ -338,13 +390,30 @@ void add_element_matrices(const std::vector<typename Spring_network<D>::Point>& 
 #pragma omp parallel for schedule(dynamic) num_threads(nt)
     for(long h = first; h < last; ++h) {
       const long end = long(chunks[std::size_t(h) + 1]);
-      for(long s = long(chunks[std::size_t(h)]); s < end; ++s) {
-        if(s + prefetch_elements < end) {
-          prefetch_destinations<D>(&dest[std::size_t(s + prefetch_elements) * (D + 1) * (D + 1)], blocks);
-          prefetch_points<D>(vertices[std::size_t(s + prefetch_elements)], x);
+      auto prefetch = [&](long s) {
+        if(s < end) {
+          prefetch_destinations<D>(&dest[std::size_t(s) * (D + 1) * (D + 1)], blocks);
+          prefetch_points<D>(vertices[std::size_t(s)], x);
         }
-        add_element_matrix<D>(element_points<D>(vertices, x, std::size_t(s)), model, elements[std::size_t(s)],
-                              &dest[std::size_t(s) * (D + 1) * (D + 1)], blocks, first_bad, error);
+      };
+      for(long s = long(chunks[std::size_t(h)]); s < end;) {
+        const Index* to = &dest[std::size_t(s) * (D + 1) * (D + 1)];
+        if constexpr(Has_symmetric_blocks_of_two<Model, D>::value)
+          if(s + 1 < end) {
+            prefetch(s + prefetch_elements);
+            prefetch(s + prefetch_elements + 1);
+            if(add_element_matrices_of_two<D>(element_points<D>(vertices, x, std::size_t(s)),
+                                              element_points<D>(vertices, x, std::size_t(s + 1)), model,
+                                              elements[std::size_t(s)], elements[std::size_t(s + 1)], to,
+                                              to + (D + 1) * (D + 1), blocks, first_bad, error)) {
+              s += 2;
+              continue;
+            }
+          }
+        prefetch(s + prefetch_elements);
+        add_element_matrix<D>(element_points<D>(vertices, x, std::size_t(s)), model, elements[std::size_t(s)], to,
+                              blocks, first_bad, error);
+        ++s;
       }
     }
   }

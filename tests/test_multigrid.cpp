@@ -520,6 +520,9 @@ void check_dense_cholesky(std::size_t n, std::mt19937& rng)
   for(std::size_t i = 0; i < n; ++i)
     for(std::size_t j = 0; j <= i; ++j)
       REQUIRE(ours[i * n + j] == ref[i * n + j]); // the same bits, not just close
+  for(std::size_t i = 0; i < n; ++i) // L^T in the upper triangle, for the backward pass
+    for(std::size_t j = i + 1; j < n; ++j)
+      REQUIRE(ours[i * n + j] == ours[j * n + i]);
   std::vector<double> b(n * M), z(n * M), zr(n * M);
   for(double& v : b)
     v = u(rng);

@@ -147,7 +147,8 @@ inline bool aggregate_strong_neighbours(std::size_t n, const Index* offsets, con
 }
 
 /// Replaces the symmetric n x n row-major matrix a by its Cholesky factor L
-/// (lower triangle; the upper one is left as it was); false, with a
+/// in the lower triangle and L^T in the upper one (which
+/// dense_cholesky_solve's backward pass reads along rows); false, with a
 /// half-factored, if a pivot is not above `relative` times its diagonal
 /// entry. The multigrids' coarsest levels are small enough for a dense
 /// factorisation.
@@ -180,13 +181,13 @@ inline bool try_dense_cholesky(std::vector<double>& a, std::size_t n, double rel
         for(std::size_t t = 0; t < w; ++t)
           s[t] -= A[t][k] * J[k];
       for(std::size_t t = 0; t < w; ++t)
-        A[t][j] = s[t] / l;
+        a[j * n + i + t] = A[t][j] = s[t] / l;
     }
     for(; i < n; ++i) {
       double s = a[i * n + j];
       for(std::size_t k = 0; k < j; ++k)
         s -= a[i * n + k] * J[k];
-      a[i * n + j] = s / l;
+      a[j * n + i] = a[i * n + j] = s / l;
     }
   }
   return true;
@@ -239,9 +240,11 @@ void dense_cholesky_solve(const std::vector<double>& l, std::size_t n, const dou
     std::array<double, M> s{};
     for(int c = 0; c < M; ++c)
       s[c] = z[ii * M + c];
+    // L's column ii read as row ii of L^T: one cache line for eight terms,
+    // not one per term
     for(std::size_t k = ii + 1; k < n; ++k)
       for(int c = 0; c < M; ++c)
-        s[c] -= l[k * n + ii] * z[k * M + c];
+        s[c] -= l[ii * n + k] * z[k * M + c];
     for(int c = 0; c < M; ++c)
       z[ii * M + c] = s[c] / l[ii * n + ii];
   }

@@ -128,7 +128,7 @@ int run_while_team_starts(int threads, F&& f)
 #ifdef _OPENMP
   const int team = thread_count(threads);
   if(team > 1) {
-    std::atomic<int> arrived{0}, placed{0};
+    std::atomic<int> placed{0}; // the other threads, each once it has checked its core
     int caller_cpu = -1;
     bool caller_done = false;
     std::mutex m;
@@ -152,7 +152,6 @@ int run_while_team_starts(int threads, F&& f)
         while(placed.load() < others)
           yield_core();
       } else {
-        ++arrived;
         // asleep while `f` runs (reading a large mesh takes seconds)
         std::unique_lock<std::mutex> lock(m);
         done.wait(lock, [&] { return caller_done; });
@@ -165,7 +164,7 @@ int run_while_team_starts(int threads, F&& f)
     }
     if(error)
       std::rethrow_exception(error);
-    return arrived.load() + 1;
+    return placed.load() + 1;
   }
 #else
   (void)threads;

@@ -68,7 +68,7 @@ double ns_per_element(const Model& model, const std::vector<Simplex<D>>& el, int
   return 1e9 * times[times.size() / 2] / double(el.size());
 }
 
-// The same through add_symmetric_blocks_of_two, two simplices per call
+// The same through symmetric_blocks_of_two, two simplices per call
 // (the assembly's form when the model has it); 0 when it has not.
 template <int D, class Model>
 double ns_per_element_in_twos(const Model& model, const std::vector<Simplex<D>>& el, int repetitions)
@@ -82,8 +82,10 @@ double ns_per_element_in_twos(const Model& model, const std::vector<Simplex<D>>&
     for(int r = 0; r < repetitions; ++r) {
       const auto t0 = std::chrono::steady_clock::now();
       for(std::size_t k = 0; k + 1 < el.size(); k += 2) {
-        std::array<double, size> K{}, L{};
-        if(!model.add_symmetric_blocks_of_two(el[k], el[k + 1], K.data(), L.data())) {
+        std::array<double, size> K, L;
+        if(!model.symmetric_blocks_of_two(el[k], el[k + 1], K.data(), L.data())) {
+          K.fill(0.0);
+          L.fill(0.0);
           model.add_symmetric_blocks(el[k], K.data());
           model.add_symmetric_blocks(el[k + 1], L.data());
         }

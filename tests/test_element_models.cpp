@@ -650,9 +650,9 @@ TEST_CASE("ball-vertex: the distinct blocks the assembly reads are the element m
 
 namespace {
 
-// add_symmetric_blocks_of_two(p, q) against add_symmetric_blocks on each,
-// both added to the same non-zero start; returns whether the pair form was
-// taken (false: S and T must be as they were).
+// symmetric_blocks_of_two(p, q) against add_symmetric_blocks on each
+// (from zero): stored over a non-zero start; returns whether the pair form
+// was taken (false: S and T must be as they were).
 template <int D, class Model>
 bool check_blocks_of_two(const Model& model, const Simplex<D>& p, const Simplex<D>& q, std::mt19937& rng)
 {
@@ -662,13 +662,13 @@ bool check_blocks_of_two(const Model& model, const Simplex<D>& p, const Simplex<
   for(double& x : start)
     x = u(rng);
   std::vector<double> S(start.begin(), start.begin() + long(n)), T(start.begin() + long(n), start.end());
-  const bool taken = model.add_symmetric_blocks_of_two(p, q, S.data(), T.data());
+  const bool taken = model.symmetric_blocks_of_two(p, q, S.data(), T.data());
   if(!taken) {
     CHECK(S == std::vector<double>(start.begin(), start.begin() + long(n)));
     CHECK(T == std::vector<double>(start.begin() + long(n), start.end()));
     return false;
   }
-  std::vector<double> one(start.begin(), start.begin() + long(n)), other(start.begin() + long(n), start.end());
+  std::vector<double> one(n, 0.0), other(n, 0.0);
   model.add_symmetric_blocks(p, one.data());
   model.add_symmetric_blocks(q, other.data());
   for(std::size_t k = 0; k < n; ++k) { // the same bits, not just close

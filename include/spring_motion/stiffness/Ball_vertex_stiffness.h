@@ -129,19 +129,20 @@ struct Ball_vertex_stiffness
     blocks<3>(p, [&](int, int, int, int, int m, int pair, double b) { S[pair * 6 + m] += b; });
   }
 
-  /// add_symmetric_blocks for two simplices at once, p's values to S and q's
-  /// to T: the same values, the two simplices' arithmetic in the two lanes
-  /// of one register. Returns false, leaving S and T as they were, when
+  /// The values add_symmetric_blocks adds, of two simplices at once,
+  /// stored (not added): p's in S and q's in T, the two simplices'
+  /// arithmetic in the two lanes of one register. Returns false, leaving S
+  /// and T as they were, when
   /// either needs what only the one-simplex form does (an edge or a facet
   /// too small, a stiffness outside the range where it is not capped, an
   /// exponent other than 1, 2 or 3): call add_symmetric_blocks for each,
   /// which also reports what is wrong.
-  bool add_symmetric_blocks_of_two(const std::array<std::array<double, 2>, 3>& p,
+  bool symmetric_blocks_of_two(const std::array<std::array<double, 2>, 3>& p,
                                    const std::array<std::array<double, 2>, 3>& q, double* S, double* T) const
   {
     return blocks_of_two<2>(p, q, S, T);
   }
-  bool add_symmetric_blocks_of_two(const std::array<std::array<double, 3>, 4>& p,
+  bool symmetric_blocks_of_two(const std::array<std::array<double, 3>, 4>& p,
                                    const std::array<std::array<double, 3>, 4>& q, double* S, double* T) const
   {
     return blocks_of_two<3>(p, q, S, T);
@@ -436,8 +437,8 @@ private:
 #pragma GCC unroll 10
     for(std::size_t u = 0; u < std::size_t(pairs); ++u)
       for(std::size_t m = 0; m < std::size_t(S); ++m) {
-        S0[u * S + m] += B[u][m][0];
-        S1[u * S + m] += B[u][m][1];
+        S0[u * S + m] = B[u][m][0];
+        S1[u * S + m] = B[u][m][1];
       }
     return true;
   }

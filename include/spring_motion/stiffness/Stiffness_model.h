@@ -128,10 +128,11 @@ struct Model_description
 /// // as its upper triangle by rows (D(D+1)/2 values), to S
 /// void add_symmetric_blocks(const std::array<std::array<double, D>, D + 1>& p, double* S) const;
 /// \endcode
-/// and, as a further option, those values for two elements at once (false:
-/// nothing added, the assembly then calls the one-element form for each):
+/// and, as a further option, those values of two elements at once, stored
+/// rather than added (false: nothing stored, the assembly then calls the
+/// one-element form for each):
 /// \code
-/// bool add_symmetric_blocks_of_two(const std::array<std::array<double, D>, D + 1>& p,
+/// bool symmetric_blocks_of_two(const std::array<std::array<double, D>, D + 1>& p,
 ///                                  const std::array<std::array<double, D>, D + 1>& q, double* S, double* T) const;
 /// \endcode
 /// An element model may also say how its edge springs act in that system,
@@ -175,7 +176,7 @@ template <class Model, int D, class = void>
 struct Has_symmetric_blocks_of_two : std::false_type {};
 template <class Model, int D>
 struct Has_symmetric_blocks_of_two<Model, D,
-                                   std::void_t<decltype(std::declval<const Model&>().add_symmetric_blocks_of_two(
+                                   std::void_t<decltype(std::declval<const Model&>().symmetric_blocks_of_two(
                                        std::declval<const std::array<std::array<double, D>, D + 1>&>(),
                                        std::declval<const std::array<std::array<double, D>, D + 1>&>(),
                                        std::declval<double*>(), std::declval<double*>()))>> : std::true_type {};

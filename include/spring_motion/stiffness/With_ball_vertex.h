@@ -60,15 +60,15 @@ struct With_ball_vertex
     ball_vertex.add_symmetric_blocks(p, S);
   }
 
-  bool add_symmetric_blocks_of_two(const std::array<std::array<double, 2>, 3>& p,
+  bool symmetric_blocks_of_two(const std::array<std::array<double, 2>, 3>& p,
                                    const std::array<std::array<double, 2>, 3>& q, double* S, double* T) const
   {
-    return ball_vertex.add_symmetric_blocks_of_two(p, q, S, T);
+    return ball_vertex.symmetric_blocks_of_two(p, q, S, T);
   }
-  bool add_symmetric_blocks_of_two(const std::array<std::array<double, 3>, 4>& p,
+  bool symmetric_blocks_of_two(const std::array<std::array<double, 3>, 4>& p,
                                    const std::array<std::array<double, 3>, 4>& q, double* S, double* T) const
   {
-    return ball_vertex.add_symmetric_blocks_of_two(p, q, S, T);
+    return ball_vertex.symmetric_blocks_of_two(p, q, S, T);
   }
 
   Model_description description(int dimension) const

@@ -190,6 +190,48 @@ private:
     return f;
   }
 
+  // The blocks v <= w (in the order of add_symmetric_blocks, each as its
+  // upper triangle) of sum_i k_i c_iv c_iw n_i n_i^T, from knn[i] = k_i n_i
+  // n_i^T (upper triangle) and c(i, v), on lanes T (double, or two
+  // elements' Double_pair): the blocks v <= w < D from the springs; the
+  // last vertex's from the others: each block row sums to zero (sum_v c_iv
+  // = 0, the feet's coordinates summing to 1), so a rigid translation is in
+  // the null space by construction, and the tetrahedron needs 6 of its 10
+  // blocks.
+  template <int D, class T, class C>
+  static std::array<std::array<T, D*(D + 1) / 2>, (D + 1) * (D + 2) / 2> sum_blocks(
+      const std::array<std::array<T, D*(D + 1) / 2>, D + 1>& knn, C c)
+  {
+    constexpr int S = D * (D + 1) / 2;
+    auto pair_of = [](int v, int w) { // v <= w
+      return v * (2 * D + 3 - v) / 2 + (w - v);
+    };
+    std::array<std::array<T, S>, (D + 1) * (D + 2) / 2> B{};
+#pragma GCC unroll 4
+    for(int v = 0; v < D; ++v)
+#pragma GCC unroll 4
+      for(int w = v; w < D; ++w) {
+        auto& b = B[std::size_t(pair_of(v, w))];
+#pragma GCC unroll 4
+        for(int i = 0; i <= D; ++i) {
+          const T f = c(i, v) * c(i, w);
+          for(int m = 0; m < S; ++m)
+            b[std::size_t(m)] += f * knn[std::size_t(i)][std::size_t(m)];
+        }
+      }
+#pragma GCC unroll 4
+    for(int v = 0; v <= D; ++v) { // B(v, D) = -sum_{w < D} B(v, w)
+      auto& last = B[std::size_t(pair_of(v, D))];
+#pragma GCC unroll 4
+      for(int w = 0; w < D; ++w) {
+        const auto& b = B[std::size_t(v == D ? pair_of(w, D) : pair_of(std::min(v, w), std::max(v, w)))];
+        for(int m = 0; m < S; ++m)
+          last[std::size_t(m)] -= b[std::size_t(m)];
+      }
+    }
+    return B;
+  }
+
   // Block (v, w) of sum_i k_i a_i a_i^T, a_i = (n_i at vertex i, -b_v n_i at
   // each other vertex v), is sum_i k_i c_iv c_iw n_i n_i^T (c_ii = 1, c_iv =
   // -b_v): symmetric and equal to block (w, v), so only the (D+1)(D+2)/2
@@ -270,37 +312,7 @@ private:
     auto c = [&](int i, int v) {
       return v == i ? 1.0 : G[std::size_t(i)][std::size_t(v)] * inverse_NN[std::size_t(i)];
     };
-    // the blocks v <= w < D from the springs; the last vertex's from the
-    // others: each block row sums to zero (sum_v c_iv = 0, the feet's
-    // coordinates summing to 1), so a rigid translation is in the null
-    // space by construction, and the tetrahedron needs 6 of its 10 blocks
-    constexpr int pairs = (D + 1) * (D + 2) / 2;
-    auto pair_of = [](int v, int w) { // v <= w
-      return v * (2 * D + 3 - v) / 2 + (w - v);
-    };
-    std::array<std::array<double, S>, pairs> B{};
-#pragma GCC unroll 4
-    for(int v = 0; v < D; ++v)
-#pragma GCC unroll 4
-      for(int w = v; w < D; ++w) {
-        auto& b = B[std::size_t(pair_of(v, w))];
-#pragma GCC unroll 4
-        for(int i = 0; i <= D; ++i) {
-          const double f = c(i, v) * c(i, w);
-          for(int m = 0; m < S; ++m)
-            b[std::size_t(m)] += f * knn[std::size_t(i)][std::size_t(m)];
-        }
-      }
-#pragma GCC unroll 4
-    for(int v = 0; v <= D; ++v) { // B(v, D) = -sum_{w < D} B(v, w)
-      auto& last = B[std::size_t(pair_of(v, D))];
-#pragma GCC unroll 4
-      for(int w = 0; w < D; ++w) {
-        const auto& b = B[std::size_t(v == D ? pair_of(w, D) : pair_of(std::min(v, w), std::max(v, w)))];
-        for(int m = 0; m < S; ++m)
-          last[std::size_t(m)] -= b[std::size_t(m)];
-      }
-    }
+    const auto B = sum_blocks<D>(knn, c);
     for(int v = 0, pair = 0; v <= D; ++v)
       for(int w = v; w <= D; ++w, ++pair)
         for(int r = 0, m = 0; r < D; ++r)
@@ -408,32 +420,7 @@ private:
       return v == i ? one : G[std::size_t(i)][std::size_t(v)] * inverse_NN[std::size_t(i)];
     };
     constexpr int pairs = (D + 1) * (D + 2) / 2;
-    auto pair_of = [](int v, int w) { return v * (2 * D + 3 - v) / 2 + (w - v); };
-    std::array<std::array<T, S>, pairs> B;
-    for(auto& b : B)
-      b.fill(internal::lanes_of<T>(0.0));
-#pragma GCC unroll 4
-    for(int v = 0; v < D; ++v)
-#pragma GCC unroll 4
-      for(int w = v; w < D; ++w) {
-        auto& b = B[std::size_t(pair_of(v, w))];
-#pragma GCC unroll 4
-        for(int i = 0; i <= D; ++i) {
-          const T f = c(i, v) * c(i, w);
-          for(int m = 0; m < S; ++m)
-            b[std::size_t(m)] += f * knn[std::size_t(i)][std::size_t(m)];
-        }
-      }
-#pragma GCC unroll 4
-    for(int v = 0; v <= D; ++v) {
-      auto& last = B[std::size_t(pair_of(v, D))];
-#pragma GCC unroll 4
-      for(int w = 0; w < D; ++w) {
-        const auto& b = B[std::size_t(v == D ? pair_of(w, D) : pair_of(std::min(v, w), std::max(v, w)))];
-        for(int m = 0; m < S; ++m)
-          last[std::size_t(m)] -= b[std::size_t(m)];
-      }
-    }
+    const auto B = sum_blocks<D>(knn, c);
 #pragma GCC unroll 10
     for(std::size_t u = 0; u < std::size_t(pairs); ++u)
       for(std::size_t m = 0; m < std::size_t(S); ++m) {

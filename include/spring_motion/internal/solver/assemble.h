@@ -251,12 +251,8 @@ using Element_values = std::array<double, Has_symmetric_blocks<Model, D>::value
 // Adds element values Ke to the blocks through the element's (D+1)^2
 // destinations `to` (none: a constrained vertex's row).
 template <int D, class Model>
-void scatter_element_values(const Element_values<D, Model>& values, const Index* to, double* blocks)
+void scatter_element_values(const Element_values<D, Model>& Ke, const Index* to, double* blocks)
 {
-  // a local copy, which the stores to `blocks` cannot alias: read through
-  // the reference, every value was loaded again after each store (the
-  // tetrahedron's scatter took three times as long)
-  const Element_values<D, Model> Ke = values;
   constexpr int DD = D * D;
   constexpr int ND = (D + 1) * D;
   constexpr int S = D * (D + 1) / 2;

@@ -43,15 +43,31 @@ std::vector<Simplex<D>> simplices(std::size_t n)
   return out;
 }
 
+// ns per element of `pass` (one pass over n elements), median of the
+// repetitions; `pass` returns a value of its results, kept alive
+template <class Pass>
+double median_ns_per_element(std::size_t n, int repetitions, Pass pass)
+{
+  std::vector<double> times;
+  double sink = 0;
+  for(int r = 0; r < repetitions; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    sink += pass();
+    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  if(sink == 0.125) // keeps the kernels' results alive
+    std::puts("");
+  std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
+  return 1e9 * times[times.size() / 2] / double(n);
+}
+
 template <int D, class Model>
 double ns_per_element(const Model& model, const std::vector<Simplex<D>>& el, int repetitions)
 {
   constexpr bool symmetric = sm::internal::Has_symmetric_blocks<Model, D>::value;
   constexpr int size = symmetric ? (D + 1) * (D + 2) / 2 * D * (D + 1) / 2 : (D + 1) * D * (D + 1) * D;
-  std::vector<double> times;
-  double sink = 0;
-  for(int r = 0; r < repetitions; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
+  return median_ns_per_element(el.size(), repetitions, [&] {
+    double sink = 0;
     for(const auto& p : el) {
       std::array<double, size> K{};
       if constexpr(symmetric)
@@ -60,12 +76,8 @@ double ns_per_element(const Model& model, const std::vector<Simplex<D>>& el, int
         model.add_element_matrix(p, K.data());
       sink += K[0];
     }
-    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  if(sink == 0.125) // keeps the kernels' results alive
-    std::puts("");
-  std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
-  return 1e9 * times[times.size() / 2] / double(el.size());
+    return sink;
+  });
 }
 
 // The same through symmetric_blocks_of_two, two simplices per call
@@ -77,10 +89,8 @@ double ns_per_element_in_twos(const Model& model, const std::vector<Simplex<D>>&
     return 0;
   else {
     constexpr int size = (D + 1) * (D + 2) / 2 * D * (D + 1) / 2;
-    std::vector<double> times;
-    double sink = 0;
-    for(int r = 0; r < repetitions; ++r) {
-      const auto t0 = std::chrono::steady_clock::now();
+    return median_ns_per_element(el.size(), repetitions, [&] {
+      double sink = 0;
       for(std::size_t k = 0; k + 1 < el.size(); k += 2) {
         std::array<double, size> K, L;
         if(!model.symmetric_blocks_of_two(el[k], el[k + 1], K.data(), L.data())) {
@@ -91,12 +101,8 @@ double ns_per_element_in_twos(const Model& model, const std::vector<Simplex<D>>&
         }
         sink += K[0] + L[0];
       }
-      times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    }
-    if(sink == 0.125)
-      std::puts("");
-    std::nth_element(times.begin(), times.begin() + long(times.size() / 2), times.end());
-    return 1e9 * times[times.size() / 2] / double(el.size());
+      return sink;
+    });
   }
 }
 

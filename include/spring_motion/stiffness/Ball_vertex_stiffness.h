@@ -132,18 +132,17 @@ struct Ball_vertex_stiffness
   /// The values add_symmetric_blocks adds, of two simplices at once,
   /// stored (not added): p's in S and q's in T, the two simplices'
   /// arithmetic in the two lanes of one register. Returns false, leaving S
-  /// and T as they were, when
-  /// either needs what only the one-simplex form does (an edge or a facet
-  /// too small, a stiffness outside the range where it is not capped, an
-  /// exponent other than 1, 2 or 3): call add_symmetric_blocks for each,
-  /// which also reports what is wrong.
+  /// and T as they were, when either needs what only the one-simplex form
+  /// does (an edge or a facet too small, a stiffness outside the range
+  /// where it is not capped, an exponent other than 1, 2 or 3): call
+  /// add_symmetric_blocks for each, which also reports what is wrong.
   bool symmetric_blocks_of_two(const std::array<std::array<double, 2>, 3>& p,
-                                   const std::array<std::array<double, 2>, 3>& q, double* S, double* T) const
+                               const std::array<std::array<double, 2>, 3>& q, double* S, double* T) const
   {
     return blocks_of_two<2>(p, q, S, T);
   }
   bool symmetric_blocks_of_two(const std::array<std::array<double, 3>, 4>& p,
-                                   const std::array<std::array<double, 3>, 4>& q, double* S, double* T) const
+                               const std::array<std::array<double, 3>, 4>& q, double* S, double* T) const
   {
     return blocks_of_two<3>(p, q, S, T);
   }
@@ -161,33 +160,106 @@ private:
   // 3D: six times the volume). Then h_i = |V| / |N_i|, and the foot of
   // altitude i has the barycentric coordinates b_j = -N_i . N_j / |N_i|^2
   // (the gradients of the barycentric functions are N_j / V).
-  template <int D>
+  //
+  // Written over the lane type T (double, or Double_pair for two simplices
+  // at once, double_pair.h) with the helpers below, which do angles.h's
+  // sub, dot and cross in their order: the same bits either way.
+  template <int D, class T = double>
   struct Facet_normals
   {
-    std::array<std::array<double, D>, D + 1> normal;
-    double measure;
+    std::array<std::array<T, D>, D + 1> normal;
+    T measure;
   };
-  static Facet_normals<2> facet_normals(const std::array<std::array<double, 2>, 3>& p)
+  template <class T>
+  static Facet_normals<2, T> facet_normals(const std::array<std::array<T, 2>, 3>& p)
   {
-    Facet_normals<2> f;
+    Facet_normals<2, T> f;
     for(int i = 0; i < 3; ++i) { // the edge from p_j to p_l turned a quarter
       const auto& j = p[std::size_t((i + 1) % 3)];
       const auto& l = p[std::size_t((i + 2) % 3)];
       f.normal[std::size_t(i)] = {l[1] - j[1], j[0] - l[0]};
     }
-    f.measure = internal::dot<2>(internal::sub<2>(p[0], p[1]), f.normal[0]);
+    f.measure = dot<2>(sub<2>(p[0], p[1]), f.normal[0]);
     return f;
   }
-  static Facet_normals<3> facet_normals(const std::array<std::array<double, 3>, 4>& p)
+  template <class T>
+  static Facet_normals<3, T> facet_normals(const std::array<std::array<T, 3>, 4>& p)
   {
-    const auto e1 = internal::sub<3>(p[1], p[0]), e2 = internal::sub<3>(p[2], p[0]), e3 = internal::sub<3>(p[3], p[0]);
+    const auto e1 = sub<3>(p[1], p[0]), e2 = sub<3>(p[2], p[0]), e3 = sub<3>(p[3], p[0]);
     // N_0 from its own facet's edges, not as -(N_1 + N_2 + N_3): no
     // cancellation when facet 0 is small
-    Facet_normals<3> f;
-    f.normal = {internal::cross(internal::sub<3>(p[3], p[1]), internal::sub<3>(p[2], p[1])), internal::cross(e2, e3),
-                internal::cross(e3, e1), internal::cross(e1, e2)};
-    f.measure = internal::dot<3>(e1, f.normal[1]);
+    Facet_normals<3, T> f;
+    f.normal = {cross(sub<3>(p[3], p[1]), sub<3>(p[2], p[1])), cross(e2, e3), cross(e3, e1), cross(e1, e2)};
+    f.measure = dot<3>(e1, f.normal[1]);
     return f;
+  }
+
+  template <int D, class T>
+  static std::array<T, D> sub(const std::array<T, D>& a, const std::array<T, D>& b)
+  {
+    std::array<T, D> r;
+    for(std::size_t c = 0; c < D; ++c)
+      r[c] = a[c] - b[c];
+    return r;
+  }
+  template <int D, class T>
+  static T dot(const std::array<T, D>& a, const std::array<T, D>& b)
+  {
+    T s = internal::lanes_of<T>(0.0);
+    for(std::size_t c = 0; c < D; ++c)
+      s += a[c] * b[c];
+    return s;
+  }
+  template <class T>
+  static std::array<T, 3> cross(const std::array<T, 3>& a, const std::array<T, 3>& b)
+  {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+  }
+
+  // |p_b - p_a|^2 of the simplex's edges, a < b
+  template <int D, class T>
+  static std::array<T, D*(D + 1) / 2> squared_edges(const std::array<std::array<T, D>, D + 1>& p)
+  {
+    std::array<T, D*(D + 1) / 2> ee;
+    for(std::size_t a = 0, k = 0; a <= D; ++a)
+      for(std::size_t b = a + 1; b <= D; ++b, ++k) {
+        const auto e = sub<D>(p[b], p[a]);
+        ee[k] = dot<D>(e, e);
+      }
+    return ee;
+  }
+
+  // N_i . N_j
+  template <int D, class T>
+  static std::array<std::array<T, D + 1>, D + 1> gram(const std::array<std::array<T, D>, D + 1>& N)
+  {
+    std::array<std::array<T, D + 1>, D + 1> G;
+    for(std::size_t i = 0; i <= D; ++i)
+      for(std::size_t j = i; j <= D; ++j)
+        G[i][j] = G[j][i] = dot<D>(N[i], N[j]);
+    return G;
+  }
+
+  // The block solver inverts D x D sums of these matrices and of the edge
+  // springs (up to 1/l^2): its determinant, a product of D such entries,
+  // stays finite for edges longer than ~1e-50, as with torsional springs.
+  static constexpr double min_squared_edge = 1e-100;
+
+  // p of k = weight / h^p when it is 1, 2 or 3 (the products blocks() forms
+  // without a power function), else 0
+  int whole_power() const { return exponent == 1 ? 1 : exponent == 2 ? 2 : exponent == 3 ? 3 : 0; }
+
+  // Whether |V|^p is a normal number (vexp: log2 |V|), and whether h_i^-p,
+  // h_i = |V| / |N_i|, lies far enough inside the range where capped_pow
+  // does not cap it (log2 h_i within 2 of vexp - log2 |N_i|): blocks()'s
+  // products of the facet normals then give k without a power function.
+  static bool volume_uncapped(int power, double volume, int vexp)
+  {
+    return power > 0 && volume > 0 && power * (std::abs(vexp) + 1) < 1000;
+  }
+  static bool height_uncapped(int power, int vexp, double NN)
+  {
+    return power * (std::abs(vexp - internal::binary_exponent(NN) / 2) + 3) < 790;
   }
 
   // The blocks v <= w (in the order of add_symmetric_blocks, each as its
@@ -252,28 +324,17 @@ private:
   void blocks(const std::array<std::array<double, D>, D + 1>& p, Out out) const
   {
     constexpr int S = D * (D + 1) / 2;
-    // The block solver inverts D x D sums of these matrices and of the edge
-    // springs (up to 1/l^2): its determinant, a product of D such entries,
-    // stays finite for edges longer than ~1e-50, as with torsional springs.
-    for(int a = 0; a <= D; ++a)
-      for(int b = a + 1; b <= D; ++b) {
-        const auto e = internal::sub<D>(p[b], p[a]);
-        const double ee = internal::dot<D>(e, e);
-        SPRING_MOTION_CHECK(ee >= 1e-100, "ball-vertex springs need edges longer than 1e-50 (found one of squared length "
-                                              << ee << "): scale the mesh");
-      }
+    for(const double ee : squared_edges<D>(p))
+      SPRING_MOTION_CHECK(ee >= min_squared_edge, "ball-vertex springs need edges longer than 1e-50 (found one of "
+                                                  "squared length " << ee << "): scale the mesh");
     const auto facets = facet_normals(p);
     const auto& N = facets.normal;
-    std::array<std::array<double, D + 1>, D + 1> G; // N_i . N_j
-    for(int i = 0; i <= D; ++i)
-      for(int j = i; j <= D; ++j)
-        G[std::size_t(i)][std::size_t(j)] = G[std::size_t(j)][std::size_t(i)] =
-            internal::dot<D>(N[std::size_t(i)], N[std::size_t(j)]);
+    const auto G = gram<D>(N);
     const double volume = std::abs(facets.measure);
     const int vexp = internal::binary_exponent(volume);
-    const int power = exponent == 1 ? 1 : exponent == 2 ? 2 : exponent == 3 ? 3 : 0;
+    const int power = whole_power();
     // 1 / |V|^p, when |V|^p is a normal number
-    const double inverse_power = power > 0 && volume > 0 && power * (std::abs(vexp) + 1) < 1000
+    const double inverse_power = volume_uncapped(power, volume, vexp)
                                      ? 1.0 / (power == 1 ? volume : power == 2 ? volume * volume
                                                                                : volume * volume * volume)
                                      : 0.0;
@@ -289,11 +350,8 @@ private:
       const double NN = G[std::size_t(i)][std::size_t(i)];
       SPRING_MOTION_CHECK(NN > 0 && std::isfinite(NN), "ball-vertex springs need facets of non-zero size");
       inverse_NN[std::size_t(i)] = 1.0 / NN;
-      // log2 h within 2 of vexp - log2 |N_i|: far enough inside the range
-      // where capped_pow does not cap h^-p
-      const int hexp = vexp - internal::binary_exponent(NN) / 2;
       double g; // k_i / |N_i|^2, or k_i with n the unit normal
-      if(inverse_power > 0 && power * (std::abs(hexp) + 3) < 790) {
+      if(inverse_power > 0 && height_uncapped(power, vexp, NN)) {
         g = weight * inverse_power;
         if(power != 2) {
           const double len = std::sqrt(NN);
@@ -332,68 +390,29 @@ private:
   {
     using T = internal::Double_pair;
     constexpr int S = D * (D + 1) / 2;
-    const int power = exponent == 1 ? 1 : exponent == 2 ? 2 : exponent == 3 ? 3 : 0;
+    const int power = whole_power();
     if(power == 0)
       return false;
-    using Vector = std::array<T, D>;
-    auto sub = [](const Vector& a, const Vector& b) {
-      Vector r;
-      for(int c = 0; c < D; ++c)
-        r[std::size_t(c)] = a[std::size_t(c)] - b[std::size_t(c)];
-      return r;
-    };
-    auto dot = [](const Vector& a, const Vector& b) {
-      T s = internal::lanes_of<T>(0.0);
-      for(int c = 0; c < D; ++c)
-        s += a[std::size_t(c)] * b[std::size_t(c)];
-      return s;
-    };
-    std::array<Vector, D + 1> p;
+    std::array<std::array<T, D>, D + 1> p;
     for(std::size_t v = 0; v <= D; ++v)
       for(std::size_t c = 0; c < D; ++c)
         p[v][c] = T{p0[v][c], p1[v][c]};
-    for(int a = 0; a <= D; ++a)
-      for(int b = a + 1; b <= D; ++b) {
-        const auto e = sub(p[std::size_t(b)], p[std::size_t(a)]);
-        const auto fits = dot(e, e) >= internal::lanes_of<T>(1e-100);
-        if(!(fits[0] && fits[1]))
-          return false;
-      }
-    std::array<Vector, D + 1> N;
-    T measure;
-    if constexpr(D == 2) {
-      for(int i = 0; i < 3; ++i) {
-        const auto& j = p[std::size_t((i + 1) % 3)];
-        const auto& l = p[std::size_t((i + 2) % 3)];
-        N[std::size_t(i)] = {l[1] - j[1], j[0] - l[0]};
-      }
-      measure = dot(sub(p[0], p[1]), N[0]);
-    } else {
-      auto cross = [](const Vector& a, const Vector& b) -> Vector {
-        return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-      };
-      const auto e1 = sub(p[1], p[0]), e2 = sub(p[2], p[0]), e3 = sub(p[3], p[0]);
-      N = {cross(sub(p[3], p[1]), sub(p[2], p[1])), cross(e2, e3), cross(e3, e1), cross(e1, e2)};
-      measure = dot(e1, N[1]);
-    }
-    std::array<std::array<T, D + 1>, D + 1> G;
-    for(std::size_t i = 0; i <= D; ++i)
-      for(std::size_t j = i; j <= D; ++j)
-        G[i][j] = G[j][i] = dot(N[i], N[j]);
-    const T volume = internal::lane_abs(measure);
-    for(int t = 0; t < 2; ++t) { // blocks()'s tests for its uncapped path, per lane
-      const double v = volume[t];
-      const int vexp = internal::binary_exponent(v);
-      if(!(v > 0 && power * (std::abs(vexp) + 1) < 1000))
+    for(const T ee : squared_edges<D>(p)) {
+      const auto fits = ee >= internal::lanes_of<T>(min_squared_edge);
+      if(!(fits[0] && fits[1]))
         return false;
-      for(std::size_t i = 0; i <= D; ++i) {
-        const double NN = G[i][i][t];
-        if(!(NN > 0 && std::isfinite(NN)))
+    }
+    const auto facets = facet_normals(p);
+    const auto& N = facets.normal;
+    const auto G = gram<D>(N);
+    const T volume = internal::lane_abs(facets.measure);
+    for(int t = 0; t < 2; ++t) { // blocks()'s tests for its uncapped path, per lane
+      const int vexp = internal::binary_exponent(volume[t]);
+      if(!volume_uncapped(power, volume[t], vexp))
+        return false;
+      for(std::size_t i = 0; i <= D; ++i)
+        if(!(G[i][i][t] > 0 && std::isfinite(G[i][i][t]) && height_uncapped(power, vexp, G[i][i][t])))
           return false;
-        const int hexp = vexp - internal::binary_exponent(NN) / 2;
-        if(!(power * (std::abs(hexp) + 3) < 790))
-          return false;
-      }
     }
     const T one = internal::lanes_of<T>(1.0);
     const T inverse_power =

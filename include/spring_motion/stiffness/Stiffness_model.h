@@ -133,7 +133,7 @@ struct Model_description
 /// one-element form for each):
 /// \code
 /// bool symmetric_blocks_of_two(const std::array<std::array<double, D>, D + 1>& p,
-///                                  const std::array<std::array<double, D>, D + 1>& q, double* S, double* T) const;
+///                              const std::array<std::array<double, D>, D + 1>& q, double* S, double* T) const;
 /// \endcode
 /// An element model may also say how its edge springs act in that system,
 /// or that it has none (default `Edge_spring_form::per_coordinate`):

@@ -61,12 +61,12 @@ struct With_ball_vertex
   }
 
   bool symmetric_blocks_of_two(const std::array<std::array<double, 2>, 3>& p,
-                                   const std::array<std::array<double, 2>, 3>& q, double* S, double* T) const
+                               const std::array<std::array<double, 2>, 3>& q, double* S, double* T) const
   {
     return ball_vertex.symmetric_blocks_of_two(p, q, S, T);
   }
   bool symmetric_blocks_of_two(const std::array<std::array<double, 3>, 4>& p,
-                                   const std::array<std::array<double, 3>, 4>& q, double* S, double* T) const
+                               const std::array<std::array<double, 3>, 4>& q, double* S, double* T) const
   {
     return ball_vertex.symmetric_blocks_of_two(p, q, S, T);
   }

@@ -11,6 +11,7 @@
 #include <spring_motion/spring_motion.h>
 #include <spring_motion/internal/solver/aggregation_multigrid.h>
 #include <spring_motion/internal/solver/aggregation_refresh.h>
+#include <spring_motion/internal/solver/dense_cholesky.h>
 #include <spring_motion/internal/solver/rigid_body_multigrid.h>
 
 #include "test_meshes.h"
@@ -500,22 +501,15 @@ void reference_cholesky_solve(const std::vector<double>& l, std::size_t n, const
     }
 }
 
+// ours (inside the envelope e) against the row-by-row factorisation and
+// solve over the whole triangle: the same bits
 template <int M>
-void check_dense_cholesky(std::size_t n, std::mt19937& rng)
+void check_dense_cholesky(const std::vector<double>& a, std::size_t n, const internal::Dense_envelope& e,
+                          std::mt19937& rng)
 {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  // A = G G^T + n I: symmetric positive definite, entries of mixed signs
-  std::vector<double> g(n * n), a(n * n, 0.0);
-  for(double& v : g)
-    v = u(rng);
-  for(std::size_t i = 0; i < n; ++i)
-    for(std::size_t j = 0; j < n; ++j) {
-      for(std::size_t k = 0; k < n; ++k)
-        a[i * n + j] += g[i * n + k] * g[j * n + k];
-      a[i * n + j] += i == j ? double(n) : 0.0;
-    }
   std::vector<double> ours = a, ref = a;
-  REQUIRE(internal::try_dense_cholesky(ours, n, 0.0));
+  REQUIRE(internal::try_dense_cholesky(ours, n, e, 0.0));
   REQUIRE(reference_cholesky(ref, n, 0.0));
   for(std::size_t i = 0; i < n; ++i)
     for(std::size_t j = 0; j <= i; ++j)
@@ -526,7 +520,7 @@ void check_dense_cholesky(std::size_t n, std::mt19937& rng)
   std::vector<double> b(n * M), z(n * M), zr(n * M);
   for(double& v : b)
     v = u(rng);
-  internal::dense_cholesky_solve<M>(ours, n, b.data(), z.data());
+  internal::dense_cholesky_solve<M>(ours, n, e, b.data(), z.data());
   reference_cholesky_solve<M>(ref, n, b.data(), zr.data());
   for(std::size_t i = 0; i < n * M; ++i)
     REQUIRE(z[i] == zr[i]);
@@ -540,6 +534,42 @@ void check_dense_cholesky(std::size_t n, std::mt19937& rng)
     }
 }
 
+// A = G G^T + n I: symmetric positive definite, dense, entries of mixed signs
+std::vector<double> dense_spd(std::size_t n, std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> g(n * n), a(n * n, 0.0);
+  for(double& v : g)
+    v = u(rng);
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t j = 0; j < n; ++j) {
+      for(std::size_t k = 0; k < n; ++k)
+        a[i * n + j] += g[i * n + k] * g[j * n + k];
+      a[i * n + j] += i == j ? double(n) : 0.0;
+    }
+  return a;
+}
+
+// symmetric, diagonally dominant (so positive definite), row i nonzero
+// only from column first[i], and there only at random: zeros inside the
+// envelope that the factor fills
+std::vector<double> enveloped_spd(const std::vector<std::size_t>& first, std::mt19937& rng)
+{
+  const std::size_t n = first.size();
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> a(n * n, 0.0), row(n, 0.0);
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t j = first[i]; j < i; ++j)
+      if(u(rng) > 0) {
+        a[i * n + j] = a[j * n + i] = u(rng);
+        row[i] += std::abs(a[i * n + j]);
+        row[j] += std::abs(a[i * n + j]);
+      }
+  for(std::size_t i = 0; i < n; ++i)
+    a[i * n + i] = row[i] + 0.5 + 0.5 * std::abs(u(rng));
+  return a;
+}
+
 } // namespace
 
 TEST_CASE("dense Cholesky: the interleaved rows give the bits of a row-by-row factorisation and solve",
@@ -549,16 +579,45 @@ TEST_CASE("dense Cholesky: the interleaved rows give the bits of a row-by-row fa
   // every remainder of the four interleaved rows, and more than one group
   for(std::size_t n = 1; n <= 23; ++n) {
     CAPTURE(n);
-    check_dense_cholesky<1>(n, rng);
-    check_dense_cholesky<3>(n, rng);
+    const std::vector<double> a = dense_spd(n, rng);
+    check_dense_cholesky<1>(a, n, internal::Dense_envelope::full(n), rng);
+    check_dense_cholesky<3>(a, n, internal::Dense_envelope::full(n), rng);
   }
   // a pivot at or below `relative` times its own diagonal entry is refused
+  const internal::Dense_envelope two = internal::Dense_envelope::full(2);
   std::vector<double> singular{1, 1, 1, 1};
-  CHECK_FALSE(internal::try_dense_cholesky(singular, 2, 0.0));
+  CHECK_FALSE(internal::try_dense_cholesky(singular, 2, two, 0.0));
   std::vector<double> weak{1, 1, 1, 1 + 1e-13};
-  CHECK_FALSE(internal::try_dense_cholesky(weak, 2, 1e-12));
+  CHECK_FALSE(internal::try_dense_cholesky(weak, 2, two, 1e-12));
   std::vector<double> fine{1, 1, 1, 1 + 1e-11};
-  CHECK(internal::try_dense_cholesky(fine, 2, 1e-12));
+  CHECK(internal::try_dense_cholesky(fine, 2, two, 1e-12));
+}
+
+TEST_CASE("dense Cholesky inside an envelope: the bits of the whole triangle's factorisation and solve",
+          "[solver][multigrid]")
+{
+  std::mt19937 rng(11);
+  for(std::size_t n = 1; n <= 40; ++n)
+    for(int round = 0; round < 4; ++round) {
+      CAPTURE(n, round);
+      // rows reaching back a random distance (0 to n, so from banded to
+      // dense), not monotone: a row can start before the row above it
+      std::vector<std::size_t> first(n);
+      const std::size_t reach = std::uniform_int_distribution<std::size_t>(0, n)(rng);
+      for(std::size_t i = 0; i < n; ++i)
+        first[i] = i - std::uniform_int_distribution<std::size_t>(0, std::min(i, reach))(rng);
+      const internal::Dense_envelope e = internal::Dense_envelope::from_first(first);
+      for(std::size_t j = 0; j < n; ++j) { // last[j]: the lowest row reaching column j
+        std::size_t last = j;
+        for(std::size_t i = j; i < n; ++i)
+          if(first[i] <= j)
+            last = i;
+        REQUIRE(e.last[j] == last);
+      }
+      const std::vector<double> a = enveloped_spd(first, rng);
+      check_dense_cholesky<1>(a, n, e, rng);
+      check_dense_cholesky<3>(a, n, e, rng);
+    }
 }
 
 namespace {

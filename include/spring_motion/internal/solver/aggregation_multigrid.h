@@ -4,6 +4,7 @@
 
 #include <spring_motion/Error.h>
 #include <spring_motion/Spring_network.h>
+#include <spring_motion/internal/solver/dense_cholesky.h>
 #include <spring_motion/internal/solver/threads.h>
 
 #include <algorithm>
@@ -144,110 +145,6 @@ inline bool aggregate_strong_neighbours(std::size_t n, const Index* offsets, con
     g.offsets[A + 1] = Index(g.col.size());
   }
   return true;
-}
-
-/// Replaces the symmetric n x n row-major matrix a by its Cholesky factor L
-/// in the lower triangle and L^T in the upper one (which
-/// dense_cholesky_solve's backward pass reads along rows); false, with a
-/// half-factored, if a pivot is not above `relative` times its diagonal
-/// entry. The multigrids' coarsest levels are small enough for a dense
-/// factorisation.
-inline bool try_dense_cholesky(std::vector<double>& a, std::size_t n, double relative)
-{
-  // Each entry is one sum, in the order k = 0, 1, ..., whose additions wait
-  // for each other; the entries of column j below the diagonal are
-  // independent, so four rows are summed side by side (the same operations
-  // in the same order per entry: the same bits).
-  constexpr std::size_t w = 4;
-  for(std::size_t j = 0; j < n; ++j) {
-    const double* J = &a[j * n];
-    double d = J[j];
-    const double own = d;
-    for(std::size_t k = 0; k < j; ++k)
-      d -= J[k] * J[k];
-    if(!(std::isfinite(d) && d > relative * own))
-      return false;
-    const double l = std::sqrt(d);
-    a[j * n + j] = l;
-    std::size_t i = j + 1;
-    for(; i + w <= n; i += w) {
-      double* A[w];
-      double s[w];
-      for(std::size_t t = 0; t < w; ++t) {
-        A[t] = &a[(i + t) * n];
-        s[t] = A[t][j];
-      }
-      for(std::size_t k = 0; k < j; ++k)
-        for(std::size_t t = 0; t < w; ++t)
-          s[t] -= A[t][k] * J[k];
-      for(std::size_t t = 0; t < w; ++t)
-        a[j * n + i + t] = A[t][j] = s[t] / l;
-    }
-    for(; i < n; ++i) {
-      double s = a[i * n + j];
-      for(std::size_t k = 0; k < j; ++k)
-        s -= a[i * n + k] * J[k];
-      a[j * n + i] = a[i * n + j] = s / l;
-    }
-  }
-  return true;
-}
-
-/// The same; throws unless every pivot is positive.
-inline void dense_cholesky(std::vector<double>& a, std::size_t n)
-{
-  SPRING_MOTION_CHECK(try_dense_cholesky(a, n, 0.0), "multigrid: the coarsest matrix is not positive definite");
-}
-
-/// Solves L L^T z = b for M right-hand sides stored interleaved (b[i * M + c]
-/// is row i of right-hand side c), L from dense_cholesky.
-template <int M>
-void dense_cholesky_solve(const std::vector<double>& l, std::size_t n, const double* b, double* z)
-{
-  // forward: rows i..i+3 share the terms k < i (four independent sums, as in
-  // try_dense_cholesky), then each takes its terms k >= i in order once the
-  // rows before it are solved: every sum in the order k = 0, 1, ...
-  constexpr std::size_t w = 4;
-  std::size_t i = 0;
-  for(; i + w <= n; i += w) {
-    std::array<std::array<double, M>, w> s;
-    for(std::size_t t = 0; t < w; ++t)
-      for(int c = 0; c < M; ++c)
-        s[t][std::size_t(c)] = b[(i + t) * M + c];
-    for(std::size_t k = 0; k < i; ++k)
-      for(std::size_t t = 0; t < w; ++t)
-        for(int c = 0; c < M; ++c)
-          s[t][std::size_t(c)] -= l[(i + t) * n + k] * z[k * M + c];
-    for(std::size_t t = 0; t < w; ++t) {
-      for(std::size_t k = i; k < i + t; ++k)
-        for(int c = 0; c < M; ++c)
-          s[t][std::size_t(c)] -= l[(i + t) * n + k] * z[k * M + c];
-      for(int c = 0; c < M; ++c)
-        z[(i + t) * M + c] = s[t][std::size_t(c)] / l[(i + t) * n + i + t];
-    }
-  }
-  for(; i < n; ++i) {
-    std::array<double, M> s{};
-    for(int c = 0; c < M; ++c)
-      s[c] = b[i * M + c];
-    for(std::size_t k = 0; k < i; ++k)
-      for(int c = 0; c < M; ++c)
-        s[c] -= l[i * n + k] * z[k * M + c];
-    for(int c = 0; c < M; ++c)
-      z[i * M + c] = s[c] / l[i * n + i];
-  }
-  for(std::size_t ii = n; ii-- > 0;) {
-    std::array<double, M> s{};
-    for(int c = 0; c < M; ++c)
-      s[c] = z[ii * M + c];
-    // L's column ii read as row ii of L^T: one cache line for eight terms,
-    // not one per term
-    for(std::size_t k = ii + 1; k < n; ++k)
-      for(int c = 0; c < M; ++c)
-        s[c] -= l[ii * n + k] * z[k * M + c];
-    for(int c = 0; c < M; ++c)
-      z[ii * M + c] = s[c] / l[ii * n + ii];
-  }
 }
 
 /// The coarse levels of a multigrid cycle for a scalar spring system (edge
@@ -454,15 +351,24 @@ private:
       return;
     const std::size_t n = a.rows;
     chol_.assign(n * n, 0.0);
+    std::vector<std::size_t> first(n);
     for(std::size_t i = 0; i < n; ++i) {
       chol_[i * n + i] = a.diag[i];
-      for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q)
+      first[i] = i;
+      for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q) {
         chol_[i * n + a.col[q]] += a.values[q];
+        first[i] = std::min(first[i], std::size_t(a.col[q]));
+      }
     }
-    dense_cholesky(chol_, n);
+    envelope_ = Dense_envelope::from_first(std::move(first));
+    SPRING_MOTION_CHECK(try_dense_cholesky(chol_, n, envelope_, 0.0),
+                        "multigrid: the coarsest matrix is not positive definite");
   }
 
-  void solve_coarsest(Level& L) const { dense_cholesky_solve<D>(chol_, L.n, L.rhs[0].data(), L.z[0].data()); }
+  void solve_coarsest(Level& L) const
+  {
+    dense_cholesky_solve<D>(chol_, L.n, envelope_, L.rhs[0].data(), L.z[0].data());
+  }
 
   // rhs_i - sum_j A_ij z_j over the off-diagonal entries of row i
   static Row off_residual(const Level& L, std::size_t i)
@@ -517,6 +423,7 @@ private:
 
   std::vector<Level> levels_;
   std::vector<double> chol_;
+  Dense_envelope envelope_;
   bool built_ = false;
 };
 

@@ -403,9 +403,14 @@ private:
       return;
     const std::size_t n = L.n * R;
     std::vector<double> a(n * n, 0.0);
+    std::vector<std::size_t> first(n);
     double top = 0;
-    for(std::size_t i = 0; i < L.n; ++i)
+    for(std::size_t i = 0; i < L.n; ++i) {
+      std::size_t f = i;
+      for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
+        f = std::min(f, std::size_t(L.col[q]));
       for(std::size_t r = 0; r < R; ++r) {
+        first[i * R + r] = f * R;
         for(std::size_t c = 0; c < R; ++c)
           a[(i * R + r) * n + i * R + c] = L.diag[i * RR + r * R + c];
         for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
@@ -413,8 +418,10 @@ private:
             a[(i * R + r) * n + L.col[q] * R + c] += L.values[std::size_t(q) * RR + r * R + c];
         top = std::max(top, std::abs(a[(i * R + r) * n + i * R + r]));
       }
+    }
+    envelope_ = Dense_envelope::from_first(std::move(first));
     chol_ = a;
-    if(try_dense_cholesky(chol_, n, 0.0))
+    if(try_dense_cholesky(chol_, n, envelope_, 0.0))
       return;
     // a rotation felt only through the springs of invert_diagonal can leave
     // the whole level a direction as nearly free: the same springs
@@ -424,7 +431,7 @@ private:
       for(std::size_t i = 0; i < L.n; ++i)
         for(std::size_t k = D; k < std::size_t(R); ++k)
           chol_[(i * R + k) * n + i * R + k] += spring * top;
-      if(try_dense_cholesky(chol_, n, 1e-12))
+      if(try_dense_cholesky(chol_, n, envelope_, 1e-12))
         return;
     }
     SPRING_MOTION_CHECK(false, "multigrid: the coarsest matrix is not positive definite");
@@ -432,7 +439,7 @@ private:
 
   void solve_coarsest(Level& L) const
   {
-    dense_cholesky_solve<1>(chol_, L.n * R, L.rhs[0].data(), L.z[0].data());
+    dense_cholesky_solve<1>(chol_, L.n * R, envelope_, L.rhs[0].data(), L.z[0].data());
   }
 
   // rhs_i - sum_j A_ij z_j over the off-diagonal entries of row i
@@ -511,6 +518,7 @@ private:
 
   std::vector<Level> levels_;
   std::vector<double> chol_;
+  Dense_envelope envelope_;
   bool built_ = false;
   std::size_t loads_ = 0;
 };

@@ -457,6 +457,46 @@ TEST_CASE("rigid-body multigrid: the coarse correction is symmetric and positive
   check_symmetric_positive([&](const Vec& u) { return rigid_correction(mg, u); }, s.A.rows(), 11);
 }
 
+TEST_CASE("rigid-body multigrid: the Gauss-Seidel sweeps of the coarse levels read single precision where every "
+          "value fits, double precision where one does not",
+          "[solver][multigrid]")
+{
+  // The same system scaled by 2^130 (exactly, and beyond a float's range):
+  // its coarse levels keep double precision, so its correction, scaled
+  // back, is the double-precision cycle; the unscaled system's cycle (single
+  // precision on the coarse levels) must agree with it to float rounding.
+  const Setup s = setup(true);
+  const auto points = free_points(s.net);
+  Laplacian big = s.A;
+  const double scale = std::ldexp(1.0, 130);
+  for(double& v : big.values)
+    v *= scale;
+  for(double& v : big.diag)
+    v *= scale;
+  Rigid mg, mg_big;
+  mg.build(s.A.view(), points.data());
+  mg.load(s.A.view(), points.data());
+  mg_big.build(big.view(), points.data());
+  mg_big.load(big.view(), points.data());
+  REQUIRE(mg.number_of_levels() >= 2); // a level with Gauss-Seidel sweeps
+  REQUIRE(mg_big.number_of_levels() == mg.number_of_levels());
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Vec r(s.A.rows());
+  for(auto& v : r)
+    v = {u(rng), u(rng)};
+  const Vec z = rigid_correction(mg, r), z_big = rigid_correction(mg_big, r);
+  double difference = 0, size = 0;
+  for(std::size_t i = 0; i < z.size(); ++i)
+    for(int c = 0; c < 2; ++c) {
+      REQUIRE(std::isfinite(z_big[i][std::size_t(c)]));
+      difference = std::max(difference, std::abs(z[i][std::size_t(c)] - z_big[i][std::size_t(c)] * scale));
+      size = std::max(size, std::abs(z[i][std::size_t(c)]));
+    }
+  CHECK(size > 0);
+  CHECK(difference <= 1e-5 * size);
+}
+
 namespace {
 
 // The factorisation and solve as plain row-by-row loops: each entry one sum

@@ -2,6 +2,7 @@
 #ifndef SPRING_MOTION_INTERNAL_SOLVER_BLOCK_OPS_H
 #define SPRING_MOTION_INTERNAL_SOLVER_BLOCK_OPS_H
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -47,16 +48,20 @@ inline bool invert_block(const double* m, double* r)
 /// The inverse of the symmetric N x N row-major block m by Cholesky's
 /// factorisation, or false when a pivot is not positive beyond rounding
 /// (below 1e-12 of its diagonal entry): m is not positive definite.
+/// `weakest`, if given, becomes the least ratio of a pivot to its diagonal
+/// entry (how nearly singular m is).
 template <int N>
-inline bool invert_spd_block(const double* m, double* r)
+inline bool invert_spd_block(const double* m, double* r, double* weakest = nullptr)
 {
   double l[N * N] = {};
+  double least = 1;
   for(int j = 0; j < N; ++j) {
     double d = m[j * N + j];
     for(int k = 0; k < j; ++k)
       d -= l[j * N + k] * l[j * N + k];
     if(!(std::isfinite(d) && d > 1e-12 * m[j * N + j]))
       return false;
+    least = std::min(least, d / m[j * N + j]);
     l[j * N + j] = std::sqrt(d);
     for(int i = j + 1; i < N; ++i) {
       double s = m[i * N + j];
@@ -82,6 +87,8 @@ inline bool invert_spd_block(const double* m, double* r)
     for(int i = 0; i < N; ++i)
       r[i * N + c] = y[i];
   }
+  if(weakest)
+    *weakest = least;
   return true;
 }
 
@@ -163,6 +170,15 @@ inline std::array<double, D> symmetric_block_product(const double* U, const std:
     for(int c = 0; c < D; ++c)
       y[r] += symmetric_entry<D>(U, r, c) * x[c];
   return y;
+}
+
+/// Whether a float keeps 24 bits of value a: 0, or a magnitude in [1e-30,
+/// 1e30] (capped stiffness reaches 1e250, and converting such a value traps
+/// under feenableexcept).
+inline bool fits_single(double a)
+{
+  a = std::abs(a);
+  return a == 0 || (a >= 1e-30 && a <= 1e30);
 }
 
 /// A max that a NaN sticks to, so a NaN can never pass for convergence.

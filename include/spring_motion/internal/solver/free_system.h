@@ -1053,13 +1053,6 @@ private:
     }
   }
 
-  // whether a float keeps 24 bits of value a
-  static bool fits_single(double a)
-  {
-    a = std::abs(a);
-    return a == 0 || (a >= 1e-30 && a <= 1e30);
-  }
-
   // z += correction P cycle(P^T (r - A z)). After a forward Gauss-Seidel
   // sweep from z = 0 (`after_gauss_seidel`), row k's equation holds with the
   // rows after it still at zero, so r - A z is -(sum over j > k of A_kj z_j):

@@ -44,6 +44,15 @@ namespace internal {
 /// the aggregates are chosen at `build` (when: Aggregation_refresh). The
 /// coarsest level is solved by a dense Cholesky factorisation.
 ///
+/// The Gauss-Seidel sweeps of the coarse levels read a single-precision copy
+/// of the off-diagonal blocks, made at `load` when every value fits a float
+/// (as the fine level's sweeps do): a 3D block of a coarse level holds 36
+/// values, and level 0's sweeps moved about as many bytes as the fine
+/// level's. The residual restricted after the forward sweep is formed from
+/// the entries the sweep read (those after each row), so each level's cycle
+/// stays the symmetric V-cycle of its matrix as the sweeps read it; the
+/// Galerkin products and the coarsest factorisation stay in double.
+///
 /// The result does not depend on the thread count: the Gauss-Seidel sweeps
 /// of the coarse levels run serially, and every other loop (the Galerkin
 /// products, the restrictions, the prolongations) runs over the aggregates
@@ -223,6 +232,7 @@ private:
     std::vector<Index> slot_of;                 // finer off-diagonal entry -> entry here, or none
     std::vector<Index> offsets, col;            // this level's pattern
     std::vector<double> values, diag, inv_diag; // R x R per entry / row
+    std::vector<float> single;                  // values in single precision for the sweeps, or empty
     std::vector<Coarse_row> rhs, z;
     std::vector<Row> centre;                    // per unknown
     std::vector<Row> offset;                    // per finer unknown: its position minus its aggregate's centre
@@ -307,8 +317,8 @@ private:
     Level& L = levels_[l];
     const Row* p = l == 0 ? points : levels_[l - 1].centre.data();
     const long na = long(L.n), n = long(L.parent_of.size());
-    bool definite = true;
-#pragma omp parallel num_threads(team(l, threads)) reduction(&& : definite)
+    bool definite = true, sturdy = true;
+#pragma omp parallel num_threads(team(l, threads)) reduction(&& : definite, sturdy)
     {
 #pragma omp for schedule(static)
       for(long a = 0; a < na; ++a) {
@@ -333,10 +343,21 @@ private:
           const Level& f = levels_[l - 1];
           sum_galerkin<R>(L, std::size_t(a), f.offsets.data(), f.col.data(), f.values.data(), f.diag.data());
         }
-        definite = invert_diagonal(L, std::size_t(a)) && definite;
+        bool block_sturdy = false;
+        definite = invert_diagonal(L, std::size_t(a), block_sturdy) && definite;
+        sturdy = sturdy && block_sturdy;
       }
     }
     SPRING_MOTION_CHECK(definite, "multigrid: a coarse diagonal block is not positive definite");
+    bool fits = sturdy;
+    for(const double v : L.values)
+      fits = fits && fits_single(v);
+    if(fits) {
+      L.single.resize(L.values.size());
+      for(std::size_t k = 0; k < L.values.size(); ++k)
+        L.single[k] = float(L.values[k]);
+    } else
+      L.single.clear();
   }
 
   // aggregate a's row of the Galerkin product, summed over its members'
@@ -374,11 +395,24 @@ private:
   // the same.
   static constexpr std::array<double, 3> rotation_springs{1e-13, 1e-10, 1e-7};
 
-  static bool invert_diagonal(Level& L, std::size_t a)
+  // A level's sweeps read single precision only when every diagonal block's
+  // weakest direction keeps at least this fraction of its diagonal entry:
+  // rounding the couplings to a float (relative 6e-8) could otherwise
+  // outweigh a nearly free rotation and leave the level's matrix, as the
+  // sweeps read it, indefinite (conjugate gradients then break down).
+  static constexpr double single_pivot = 1e-4;
+
+  // `sturdy`: whether no direction of the block is weaker than
+  // single_pivot of its diagonal (see load_level)
+  static bool invert_diagonal(Level& L, std::size_t a, bool& sturdy)
   {
     double* m = &L.diag[a * RR];
-    if(invert_spd_block<R>(m, &L.inv_diag[a * RR]))
+    double weakest = 0;
+    if(invert_spd_block<R>(m, &L.inv_diag[a * RR], &weakest)) {
+      sturdy = weakest >= single_pivot;
       return true;
+    }
+    sturdy = false;
     double top = 0;
     std::array<double, R> own{};
     for(int k = 0; k < R; ++k) {
@@ -442,28 +476,61 @@ private:
     dense_cholesky_solve<1>(chol_, L.n * R, envelope_, L.rhs[0].data(), L.z[0].data());
   }
 
-  // rhs_i - sum_j A_ij z_j over the off-diagonal entries of row i
-  static Coarse_row off_residual(const Level& L, std::size_t i)
+  // rhs_i - sum_j A_ij z_j over the off-diagonal entries of row i, read
+  // from v (the level's values or their single-precision copy)
+  template <class T>
+  static Coarse_row off_residual(const Level& L, const T* v, std::size_t i)
   {
     Coarse_row s = L.rhs[i];
     for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
-      subtract_block_product<R>(s, &L.values[std::size_t(q) * RR], L.z[L.col[q]]);
+      subtract_block_product<R>(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
     return s;
+  }
+  static Coarse_row off_residual(const Level& L, std::size_t i)
+  {
+    return L.single.empty() ? off_residual(L, L.values.data(), i) : off_residual(L, L.single.data(), i);
   }
 
   // Forward Gauss-Seidel from z = 0: when row i is reached z_j is still 0
   // for every j > i, so only the entries j < i change the sum (skipping the
   // others halves the blocks the sweep reads; the sum is the same).
-  static void forward_gauss_seidel_from_zero(Level& L)
+  template <class T>
+  static void forward_gauss_seidel_from_zero(Level& L, const T* v)
   {
     std::fill(L.z.begin(), L.z.end(), Coarse_row{});
     for(std::size_t i = 0; i < L.n; ++i) {
       Coarse_row s = L.rhs[i];
       for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
         if(L.col[q] < i)
-          subtract_block_product<R>(s, &L.values[std::size_t(q) * RR], L.z[L.col[q]]);
+          subtract_block_product<R>(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
       L.z[i] = block_product<R>(&L.inv_diag[i * RR], s);
     }
+  }
+  static void forward_gauss_seidel_from_zero(Level& L)
+  {
+    if(L.single.empty())
+      forward_gauss_seidel_from_zero(L, L.values.data());
+    else
+      forward_gauss_seidel_from_zero(L, L.single.data());
+  }
+
+  // row i's residual after forward_gauss_seidel_from_zero: row i's equation
+  // then holds with the rows after i at zero, so the residual is
+  // -(sum over j > i of A_ij z_j); half the row's entries and not its
+  // diagonal (the same quantity as rhs - A z, rounded differently)
+  template <class T>
+  static Coarse_row residual_after_forward_sweep(const Level& L, const T* v, std::size_t i)
+  {
+    Coarse_row s{};
+    for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
+      if(L.col[q] > i)
+        subtract_block_product<R>(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
+    return s;
+  }
+  static Coarse_row residual_after_forward_sweep(const Level& L, std::size_t i)
+  {
+    return L.single.empty() ? residual_after_forward_sweep(L, L.values.data(), i)
+                            : residual_after_forward_sweep(L, L.single.data(), i);
   }
 
   static void backward_gauss_seidel(Level& L)
@@ -495,8 +562,7 @@ private:
       Coarse_row rc{};
       for(Index m = C.member_offsets[std::size_t(b)]; m < C.member_offsets[std::size_t(b) + 1]; ++m) {
         const std::size_t i = C.members[m];
-        Coarse_row s = off_residual(L, i);
-        subtract_block_product<R>(s, &L.diag[i * RR], L.z[i]);
+        const Coarse_row s = residual_after_forward_sweep(L, i);
         add_restricted<R>(s.data(), C.offset[i], rc);
       }
       C.rhs[std::size_t(b)] = rc;

@@ -20,8 +20,9 @@ namespace internal {
 ///
 /// The multigrids' coarsest matrices are sparse (an aggregate couples with a
 /// handful of others) and their aggregates are numbered along the fine rows,
-/// which are numbered along the mesh: in that order the envelope of a 2D
-/// airfoil's coarsest level holds about a third of the triangle.
+/// which are numbered along the mesh: in that order a row's nonzeros lie
+/// near the diagonal, and the part of the triangle before them stays zero in
+/// the factor, which need not be read or summed.
 struct Dense_envelope
 {
   std::vector<std::size_t> first, last;

@@ -44,11 +44,11 @@ namespace internal {
 /// the aggregates are chosen at `build` (when: Aggregation_refresh). The
 /// coarsest level is solved by a dense Cholesky factorisation.
 ///
-/// The Gauss-Seidel sweeps of the coarse levels read a single-precision copy
-/// of the off-diagonal blocks, made at `load` when every value fits a float
-/// (as the fine level's sweeps do): a 3D block of a coarse level holds 36
-/// values, and level 0's sweeps moved about as many bytes as the fine
-/// level's. The residual restricted after the forward sweep is formed from
+/// In 3D the Gauss-Seidel sweeps of the coarse levels read a single-precision
+/// copy of the off-diagonal blocks, made at `load` when every value fits a
+/// float (as the fine level's sweeps do): a 3D block of a coarse level holds
+/// 36 values, and level 0's sweeps moved about as many bytes as the fine
+/// level's. 2D levels keep double precision (see load_level). The residual restricted after the forward sweep is formed from
 /// the entries the sweep read (those after each row), so each level's cycle
 /// stays the symmetric V-cycle of its matrix as the sweeps read it; the
 /// Galerkin products and the coarsest factorisation stay in double.
@@ -349,15 +349,20 @@ private:
       }
     }
     SPRING_MOTION_CHECK(definite, "multigrid: a coarse diagonal block is not positive definite");
-    bool fits = sturdy;
-    for(const double v : L.values)
-      fits = fits && fits_single(v);
-    if(fits) {
+    // In 2D a coarse block holds 9 values, and converting them in the
+    // sweeps' 3 x 3 products cost the block step more than the bytes saved
+    // (docs/performance.md): 2D levels keep double precision.
+    L.single.clear();
+    if(D == 3 && sturdy) {
       L.single.resize(L.values.size());
-      for(std::size_t k = 0; k < L.values.size(); ++k)
+      for(std::size_t k = 0; k < L.values.size(); ++k) {
+        if(!fits_single(L.values[k])) {
+          L.single.clear();
+          break;
+        }
         L.single[k] = float(L.values[k]);
-    } else
-      L.single.clear();
+      }
+    }
   }
 
   // aggregate a's row of the Galerkin product, summed over its members'
@@ -476,6 +481,17 @@ private:
     dense_cholesky_solve<1>(chol_, L.n * R, envelope_, L.rhs[0].data(), L.z[0].data());
   }
 
+  // calls f with the off-diagonal values the level's sweeps read: the
+  // single-precision copy where load_level made one, else the doubles
+  template <class F>
+  static void with_sweep_values(const Level& L, F&& f)
+  {
+    if(L.single.empty())
+      f(L.values.data());
+    else
+      f(L.single.data());
+  }
+
   // rhs_i - sum_j A_ij z_j over the off-diagonal entries of row i, read
   // from v (the level's values or their single-precision copy)
   template <class T>
@@ -485,10 +501,6 @@ private:
     for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
       subtract_block_product<R>(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
     return s;
-  }
-  static Coarse_row off_residual(const Level& L, std::size_t i)
-  {
-    return L.single.empty() ? off_residual(L, L.values.data(), i) : off_residual(L, L.single.data(), i);
   }
 
   // Forward Gauss-Seidel from z = 0: when row i is reached z_j is still 0
@@ -506,13 +518,6 @@ private:
       L.z[i] = block_product<R>(&L.inv_diag[i * RR], s);
     }
   }
-  static void forward_gauss_seidel_from_zero(Level& L)
-  {
-    if(L.single.empty())
-      forward_gauss_seidel_from_zero(L, L.values.data());
-    else
-      forward_gauss_seidel_from_zero(L, L.single.data());
-  }
 
   // row i's residual after forward_gauss_seidel_from_zero: row i's equation
   // then holds with the rows after i at zero, so the residual is
@@ -527,16 +532,12 @@ private:
         subtract_block_product<R>(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
     return s;
   }
-  static Coarse_row residual_after_forward_sweep(const Level& L, std::size_t i)
-  {
-    return L.single.empty() ? residual_after_forward_sweep(L, L.values.data(), i)
-                            : residual_after_forward_sweep(L, L.single.data(), i);
-  }
 
-  static void backward_gauss_seidel(Level& L)
+  template <class T>
+  static void backward_gauss_seidel(Level& L, const T* v)
   {
     for(std::size_t i = L.n; i-- > 0;)
-      L.z[i] = block_product<R>(&L.inv_diag[i * RR], off_residual(L, i));
+      L.z[i] = block_product<R>(&L.inv_diag[i * RR], off_residual(L, v, i));
   }
 
   // a symmetric V-cycle on level l from z = 0: forward Gauss-Seidel, coarse
@@ -544,16 +545,21 @@ private:
   void cycle(std::size_t l, int threads)
   {
     Level& L = levels_[l];
-    if(l + 1 == levels_.size()) {
-      if(L.n <= parameters.max_direct_rows)
-        solve_coarsest(L);
-      else { // symmetric, so the cycle stays a symmetric preconditioner
-        forward_gauss_seidel_from_zero(L);
-        backward_gauss_seidel(L);
-      }
+    if(l + 1 == levels_.size() && L.n <= parameters.max_direct_rows)
+      solve_coarsest(L);
+    else
+      with_sweep_values(L, [&](const auto* v) { cycle(l, threads, v); });
+  }
+
+  template <class T>
+  void cycle(std::size_t l, int threads, const T* v)
+  {
+    Level& L = levels_[l];
+    forward_gauss_seidel_from_zero(L, v);
+    if(l + 1 == levels_.size()) { // symmetric, so the cycle stays a symmetric preconditioner
+      backward_gauss_seidel(L, v);
       return;
     }
-    forward_gauss_seidel_from_zero(L);
     Level& C = levels_[l + 1];
     const long nc = long(C.n), n = long(L.n);
     const int nt = team(l + 1, threads);
@@ -562,7 +568,7 @@ private:
       Coarse_row rc{};
       for(Index m = C.member_offsets[std::size_t(b)]; m < C.member_offsets[std::size_t(b) + 1]; ++m) {
         const std::size_t i = C.members[m];
-        const Coarse_row s = residual_after_forward_sweep(L, i);
+        const Coarse_row s = residual_after_forward_sweep(L, v, i);
         add_restricted<R>(s.data(), C.offset[i], rc);
       }
       C.rhs[std::size_t(b)] = rc;
@@ -579,7 +585,7 @@ private:
       for(int k = D; k < R; ++k)
         L.z[std::size_t(i)][k] += a * Z[k];
     }
-    backward_gauss_seidel(L);
+    backward_gauss_seidel(L, v);
   }
 
   std::vector<Level> levels_;

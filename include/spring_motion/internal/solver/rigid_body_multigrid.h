@@ -48,10 +48,11 @@ namespace internal {
 /// copy of the off-diagonal blocks, made at `load` when every value fits a
 /// float (as the fine level's sweeps do): a 3D block of a coarse level holds
 /// 36 values, and level 0's sweeps moved about as many bytes as the fine
-/// level's. 2D levels keep double precision (see load_level). The residual restricted after the forward sweep is formed from
-/// the entries the sweep read (those after each row), so each level's cycle
-/// stays the symmetric V-cycle of its matrix as the sweeps read it; the
-/// Galerkin products and the coarsest factorisation stay in double.
+/// level's. 2D levels keep double precision (see load_level). The residual
+/// restricted after the forward sweep is formed from the entries the sweep
+/// read (those after each row), so each level's cycle stays the symmetric
+/// V-cycle of its matrix as the sweeps read it; the Galerkin products and
+/// the coarsest factorisation stay in double.
 ///
 /// The result does not depend on the thread count: the Gauss-Seidel sweeps
 /// of the coarse levels run serially, and every other loop (the Galerkin

@@ -353,17 +353,23 @@ private:
     // In 2D a coarse block holds 9 values, and converting them in the
     // sweeps' 3 x 3 products cost the block step more than the bytes saved
     // (docs/performance.md): 2D levels keep double precision.
-    L.single.clear();
-    if(D == 3 && sturdy) {
+    bool fits = D == 3 && sturdy;
+    if(fits) {
+      // sized once (the pattern is the build's), written in place: a value
+      // out of a float's range is not converted (it traps under
+      // feenableexcept), and then the copy is dropped
       L.single.resize(L.values.size());
-      for(std::size_t k = 0; k < L.values.size(); ++k) {
-        if(!fits_single(L.values[k])) {
-          L.single.clear();
-          break;
-        }
-        L.single[k] = float(L.values[k]);
+      const long nv = long(L.values.size());
+#pragma omp parallel for schedule(static) num_threads(team(l, threads)) reduction(&& : fits)
+      for(long k = 0; k < nv; ++k) {
+        const double v = L.values[std::size_t(k)];
+        const bool f = fits_single(v);
+        L.single[std::size_t(k)] = float(f ? v : 0.0);
+        fits = fits && f;
       }
     }
+    if(!fits)
+      L.single.clear();
   }
 
   // aggregate a's row of the Galerkin product, summed over its members'

@@ -987,3 +987,145 @@ TEST_CASE("solvers: a symmetric block read from its upper triangle gives the ful
   CHECK(internal::upper_triangle_index<3>(2, 2) == 5);
   CHECK(internal::upper_triangle_index<2>(1, 1) == 2);
 }
+
+namespace {
+
+// A model's symmetric element blocks written out as whole element matrices
+// (add_element_matrix), which the assembly loads as whole blocks ...
+template <int D, class Model>
+struct Whole_blocks_of
+{
+  Model model;
+  Edge_spring_form form;
+  Edge_spring_form edge_spring_form() const { return form; }
+  void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, double* K) const
+  {
+    constexpr int S = D * (D + 1) / 2, ND = (D + 1) * D;
+    std::array<double, (D + 1) * (D + 2) / 2 * S> blocks{};
+    model.add_symmetric_blocks(p, blocks.data());
+    int u = 0;
+    for(int a = 0; a <= D; ++a)
+      for(int b = a; b <= D; ++b, ++u)
+        for(int r = 0; r < D; ++r)
+          for(int c = 0; c < D; ++c) {
+            const double v = internal::symmetric_entry<D>(&blocks[std::size_t(u * S)], r, c);
+            K[(a * D + r) * ND + b * D + c] += v;
+            if(a != b) // block (b, a) is block (a, b) transposed, which is itself
+              K[(b * D + r) * ND + a * D + c] += v;
+          }
+  }
+};
+
+// ... and the same model giving its distinct symmetric blocks as well
+// (add_symmetric_blocks, one element at a time), which the assembly reads
+// instead, loading the off-diagonal blocks as upper triangles.
+template <int D, class Model>
+struct Symmetric_blocks_of : Whole_blocks_of<D, Model>
+{
+  void add_symmetric_blocks(const std::array<std::array<double, D>, D + 1>& p, double* S) const
+  {
+    this->model.add_symmetric_blocks(p, S);
+  }
+};
+
+// The loaded system and the solutions of conjugate gradients (multigrid)
+// and SOR on a jittered Kuhn grid, the boundary turned a little.
+template <int D>
+struct Loaded
+{
+  bool upper = false;
+  std::vector<double> values, diagonal;
+  std::vector<std::array<double, D>> cg, sor;
+  std::size_t cg_iterations = 0;
+};
+
+template <int D, class Model>
+Loaded<D> load_and_solve(const Spring_network<D>& net, const std::vector<Index>& free, const Model& model,
+                         const std::vector<double>& k, int threads)
+{
+  Solver_options o;
+  o.threads = threads;
+  o.tolerance = 1e-10;
+  internal::Free_system<D> fs;
+  fs.build(net, free, true, o);
+  internal::assemble_block_system<D>(net.points, model, k, fs, threads);
+  fs.set_positions(net.points);
+  std::vector<std::array<double, D>> start(net.number_of_vertices());
+  for(std::size_t i = 0; i < start.size(); ++i)
+    for(int c = 0; c < D; ++c) // the free vertices' entries are the start, the others prescribed
+      start[i][c] = 0.02 * std::sin(3.0 * double(i) + double(c)) + 0.05 * net.points[i][(c + 1) % D];
+  Loaded<D> out;
+  out.upper = fs.upper_load();
+  const double* v = fs.values();
+  out.values.assign(v, v + fs.nonzeros() * D * D);
+  out.diagonal.assign(fs.diagonal(), fs.diagonal() + fs.rows() * D * D);
+  fs.set_start(start, threads);
+  const auto report = fs.solve(o);
+  CHECK(report.converged);
+  out.cg = fs.solution();
+  out.cg_iterations = report.iterations;
+  o.method = Solver_method::sor;
+  o.relaxation_factor = 1.5;
+  o.max_iterations = 40;
+  fs.set_start(start, threads);
+  fs.solve(o);
+  out.sor = fs.solution();
+  return out;
+}
+
+template <int D>
+void check_upper_load_against_whole_blocks(int n)
+{
+  const auto mesh = spring_motion_test::kuhn_grid<D>(n);
+  const auto net = make_spring_network<D>(mesh.points, mesh.elements);
+  const auto roles = assign_roles(net, [&](const Vertex_info<D>& v) {
+    return v.on_boundary ? Vertex_role::fixed : Vertex_role::free;
+  });
+  std::vector<Index> free;
+  for(Index i = 0; i < Index(net.number_of_vertices()); ++i)
+    if(roles[i] == Vertex_role::free)
+      free.push_back(i);
+  REQUIRE(free.size() > 100);
+  const Ball_vertex_stiffness ball{2.0};
+  // ball-vertex springs alone, and with edge springs along the edges (the
+  // edge loop writes the upper triangles too)
+  for(const int threads : {1, 2})
+    for(const Edge_spring_form form : {Edge_spring_form::none, Edge_spring_form::along_edge}) {
+      std::vector<double> k(net.number_of_edges(), 0.0);
+      if(form != Edge_spring_form::none)
+        for(std::size_t e = 0; e < k.size(); ++e)
+          k[e] = 1.0 + double(e % 7);
+      INFO(D << "D, " << (form == Edge_spring_form::none ? "ball-vertex springs" : "with springs along the edges")
+             << ", " << threads << " thread(s)");
+      const auto upper = load_and_solve<D>(net, free, Symmetric_blocks_of<D, Ball_vertex_stiffness>{{ball, form}}, k,
+                                           threads);
+      const auto whole = load_and_solve<D>(net, free, Whole_blocks_of<D, Ball_vertex_stiffness>{ball, form}, k,
+                                           threads);
+      REQUIRE(upper.upper);
+      REQUIRE_FALSE(whole.upper);
+      CHECK(upper.cg_iterations > 2);
+      // every value, every solution: bit for bit
+      CHECK(upper.values == whole.values);
+      CHECK(upper.diagonal == whole.diagonal);
+      CHECK(upper.cg == whole.cg);
+      CHECK(upper.sor == whole.sor);
+      CHECK(upper.cg_iterations == whole.cg_iterations);
+      if(form == Edge_spring_form::none) {
+        // the model itself (its blocks two elements at a time) loads the same
+        const auto own = load_and_solve<D>(net, free, ball, k, threads);
+        CHECK(own.upper);
+        CHECK(own.values == whole.values);
+        CHECK(own.cg == whole.cg);
+      }
+    }
+}
+
+} // namespace
+
+TEST_CASE("solvers: a load of symmetric blocks as upper triangles gives the values and solutions of whole blocks, "
+          "bit for bit",
+          "[solver][block]")
+{
+  check_upper_load_against_whole_blocks<2>(24);
+  check_upper_load_against_whole_blocks<3>(7);
+}

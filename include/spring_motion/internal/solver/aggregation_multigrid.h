@@ -29,6 +29,9 @@ struct Csr_view
   const double* values = nullptr; // per entry: 1 (scalar) or D*D (block)
   const double* diag = nullptr;   // per row: 1 or D*D
   bool block = false;
+  // block systems whose entries are all symmetric blocks may give, instead
+  // of `values`, each entry's upper triangle (D(D+1)/2 values, by rows)
+  const double* upper = nullptr;
 };
 
 /// Parameters of the coarse levels (Solver_options says what each does).

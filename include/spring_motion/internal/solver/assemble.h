@@ -16,6 +16,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace spring_motion {
@@ -248,10 +249,36 @@ using Element_values = std::array<double, Has_symmetric_blocks<Model, D>::value
                                               ? (D + 1) * (D + 2) / 2 * (D * (D + 1) / 2)
                                               : (D + 1) * D * (D + 1) * D>;
 
+// Where element matrices go: Free_system::block_values(), whose blocks the
+// destinations count; after an upper load (Free_system::set_upper_load) the
+// off-diagonal ones, destinations [off_begin, off_end), go to their upper
+// triangles in `upper` instead.
+struct Block_targets
+{
+  double* blocks = nullptr;
+  double* upper = nullptr; // none: whole blocks everywhere
+  Index off_begin = 0, off_end = 0;
+
+  template <int D>
+  static Block_targets of(Free_system<D>& fs)
+  {
+    Block_targets t;
+    t.blocks = fs.block_values();
+    if(fs.upper_load()) {
+      t.upper = fs.upper_values();
+      t.off_begin = Index(fs.off_block(0));
+      t.off_end = Index(fs.off_block(Index(fs.nonzeros())));
+    }
+    return t;
+  }
+  // whether destination `dest` is an upper triangle's
+  bool upper_at(Index dest) const { return upper && dest >= off_begin && dest < off_end; }
+};
+
 // Adds element values Ke to the blocks through the element's (D+1)^2
 // destinations `to` (none: a constrained vertex's row).
 template <int D, class Model>
-void scatter_element_values(const Element_values<D, Model>& Ke, const Index* to, double* blocks)
+void scatter_element_values(const Element_values<D, Model>& Ke, const Index* to, const Block_targets& t)
 {
   constexpr int DD = D * D;
   constexpr int ND = (D + 1) * D;
@@ -259,7 +286,7 @@ void scatter_element_values(const Element_values<D, Model>& Ke, const Index* to,
   auto add_to = [&](Index dest, const std::array<double, DD>& block) {
     if(dest == Free_system<D>::none)
       return;
-    double* out = blocks + std::size_t(dest) * DD;
+    double* out = t.blocks + std::size_t(dest) * DD;
     for(int k = 0; k < DD; ++k)
       out[k] += block[std::size_t(k)];
   };
@@ -275,11 +302,22 @@ void scatter_element_values(const Element_values<D, Model>& Ke, const Index* to,
     for(int a = 0; a <= D; ++a)
 #pragma GCC unroll 4
       for(int b = a; b <= D; ++b, ++u) {
+        const Index ab = to[a * (D + 1) + b];
+        if(a != b && t.upper_at(ab)) {
+          // both vertices free: (b, a) is an entry of the pattern too, and
+          // each takes the upper triangle as it is
+          for(const Index dest : {ab, to[b * (D + 1) + a]}) {
+            double* out = t.upper + std::size_t(dest - t.off_begin) * S;
+            for(int k = 0; k < S; ++k)
+              out[k] += Ke[std::size_t(u * S + k)];
+          }
+          continue;
+        }
         std::array<double, DD> full;
         for(int r = 0; r < D; ++r)
           for(int c = 0; c < D; ++c)
             full[std::size_t(r * D + c)] = symmetric_entry<D>(&Ke[std::size_t(u * S)], r, c);
-        add_to(to[a * (D + 1) + b], full);
+        add_to(ab, full);
         if(a != b)
           add_to(to[b * (D + 1) + a], full);
       }
@@ -298,7 +336,7 @@ void scatter_element_values(const Element_values<D, Model>& Ke, const Index* to,
 // destinations `to`; a failure is kept if t is the smallest so far.
 template <int D, class Model>
 void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const Model& model, std::size_t t,
-                        const Index* to, double* blocks, long& first_bad, std::exception_ptr& error)
+                        const Index* to, const Block_targets& blocks, long& first_bad, std::exception_ptr& error)
 {
   Element_values<D, Model> Ke;
   Ke.fill(0.0);
@@ -323,7 +361,8 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
 template <int D, class Model>
 bool add_element_matrices_of_two(const std::array<std::array<double, D>, D + 1>& p,
                                  const std::array<std::array<double, D>, D + 1>& q, const Model& model, std::size_t t,
-                                 std::size_t u, const Index* to_t, const Index* to_u, double* blocks, long& first_bad,
+                                 std::size_t u, const Index* to_t, const Index* to_u, const Block_targets& blocks,
+                                 long& first_bad,
                                  std::exception_ptr& error)
 {
   // stored by the model, so not cleared first (a clearing took a third of
@@ -348,21 +387,48 @@ constexpr long prefetch_elements = 2;
 // bytes of blocks above which they are requested
 constexpr std::size_t prefetch_above = std::size_t(8) << 20;
 
+#if defined(__GNUC__)
+#define SPRING_MOTION_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define SPRING_MOTION_ALWAYS_INLINE inline
+#endif
+
+// Forced inline, like the two below: GCC finds a function that only
+// requests memory "pure" and deletes the calls whose result is unused.
 template <int D>
-inline void prefetch_destinations(const Index* to, const double* blocks)
+SPRING_MOTION_ALWAYS_INLINE void prefetch_destination(Index d, const Block_targets& blocks)
 {
 #if defined(__GNUC__)
-  constexpr int DD = D * D;
-  for(int a = 0; a < (D + 1) * (D + 1); ++a)
-    if(to[a] != Free_system<D>::none) {
-      const double* b = blocks + std::size_t(to[a]) * DD;
-      __builtin_prefetch(b, 1);
-      __builtin_prefetch(b + DD - 1, 1);
-    }
+  constexpr int DD = D * D, S = D * (D + 1) / 2;
+  if(d == Free_system<D>::none)
+    return;
+  if(blocks.upper_at(d)) {
+    const double* b = blocks.upper + std::size_t(d - blocks.off_begin) * S;
+    __builtin_prefetch(b, 1);
+    __builtin_prefetch(b + S - 1, 1);
+  } else {
+    const double* b = blocks.blocks + std::size_t(d) * DD;
+    __builtin_prefetch(b, 1);
+    __builtin_prefetch(b + DD - 1, 1);
+  }
 #else
-  (void)to;
+  (void)d;
   (void)blocks;
 #endif
+}
+
+// One request after another, not a loop (which GCC may delete for the
+// same reason when it has not unrolled it).
+template <int D, std::size_t... A>
+SPRING_MOTION_ALWAYS_INLINE void prefetch_destinations(const Index* to, const Block_targets& blocks, std::index_sequence<A...>)
+{
+  (prefetch_destination<D>(to[A], blocks), ...);
+}
+
+template <int D>
+SPRING_MOTION_ALWAYS_INLINE void prefetch_destinations(const Index* to, const Block_targets& blocks)
+{
+  prefetch_destinations<D>(to, blocks, std::make_index_sequence<(D + 1) * (D + 1)>());
 }
 
 // The corners' positions are read at random too: the block array streamed
@@ -388,7 +454,7 @@ template <int D, class Model>
 void add_element_matrices(const std::vector<typename Spring_network<D>::Point>& x, const Model& model,
                           Free_system<D>& fs, int threads)
 {
-  double* blocks = fs.block_values();
+  const Block_targets blocks = Block_targets::of(fs);
   const auto& elements = fs.assembled_elements();
   const auto& vertices = fs.assembled_element_vertices();
   const auto& dest = fs.element_destinations();
@@ -454,7 +520,12 @@ void assemble_block_system(const std::vector<typename Spring_network<D>::Point>&
   const auto& bnd_offsets = fs.bnd_offsets();
   const auto& bnd_vertex = fs.bnd_vertices();
   const auto& bnd_edge = fs.bnd_edges();
+  // every block symmetric (the model's, and springs' k I or k e e^T): the
+  // off-diagonal ones loaded as upper triangles (Free_system::set_upper_load)
+  fs.set_upper_load(Has_symmetric_blocks<Model, D>::value && !fs.has_projectors());
+  constexpr int S = D * (D + 1) / 2;
   double* blocks = fs.block_values();
+  double* upper = fs.upper_load() ? fs.upper_values() : nullptr;
   const long nf = long(order.size());
   // the spring block B of edge e between i and j: row i gets +B on its
   // diagonal and -B at (i, j)
@@ -497,12 +568,20 @@ void assemble_block_system(const std::vector<typename Spring_network<D>::Point>&
     for(int c = 0; c < DD; ++c)
       diag[c] = 0;
     if(form == Edge_spring_form::none) { // a row's blocks lie together: cleared for the element matrices
-      std::fill(blocks + fs.off_block(offsets[R]) * DD, blocks + fs.off_block(offsets[R + 1]) * DD, 0.0);
+      if(upper)
+        std::fill(upper + std::size_t(offsets[R]) * S, upper + std::size_t(offsets[R + 1]) * S, 0.0);
+      else
+        std::fill(blocks + fs.off_block(offsets[R]) * DD, blocks + fs.off_block(offsets[R + 1]) * DD, 0.0);
       std::fill(blocks + fs.bnd_block(bnd_offsets[R]) * DD, blocks + fs.bnd_block(bnd_offsets[R + 1]) * DD, 0.0);
       continue;
     }
     for(Index q = offsets[R]; q < offsets[R + 1]; ++q)
-      spring(edge[q], i, order[col[q]], blocks + fs.off_block(q) * DD, diag);
+      if(upper) {
+        std::array<double, DD> off;
+        spring(edge[q], i, order[col[q]], off.data(), diag);
+        copy_upper_triangle<D>(off.data(), upper + std::size_t(q) * S);
+      } else
+        spring(edge[q], i, order[col[q]], blocks + fs.off_block(q) * DD, diag);
     for(Index q = bnd_offsets[R]; q < bnd_offsets[R + 1]; ++q)
       spring(bnd_edge[q], i, bnd_vertex[q], blocks + fs.bnd_block(q) * DD, diag);
   }

@@ -137,6 +137,16 @@ constexpr T symmetric_entry(const T* U, int r, int c)
   return U[r <= c ? upper_triangle_index<D>(r, c) : upper_triangle_index<D>(c, r)];
 }
 
+/// The whole D x D block m (row-major) of a symmetric block stored as its
+/// upper triangle U.
+template <int D>
+inline void expand_symmetric_block(const double* U, double* m)
+{
+  for(int r = 0; r < D; ++r)
+    for(int c = 0; c < D; ++c)
+      m[r * D + c] = symmetric_entry<D>(U, r, c);
+}
+
 /// s -= M x for a symmetric D x D block M stored as its upper triangle (of
 /// doubles, or of floats read as doubles): the products and sums of
 /// subtract_block_product on the full block, in its order, so the same bits.

@@ -93,8 +93,10 @@ public:
         coupling.resize(fine.offsets[n]);
         for(std::size_t i = 0; i < n; ++i) {
           scale[i] = block_norm<D>(fine.diag + i * DD);
-          for(Index q = fine.offsets[i]; q < fine.offsets[i + 1]; ++q)
-            coupling[q] = block_norm<D>(fine.values + std::size_t(q) * DD);
+          for(Index q = fine.offsets[i]; q < fine.offsets[i + 1]; ++q) {
+            std::array<double, DD> whole;
+            coupling[q] = block_norm<D>(fine_block(fine, q, whole));
+          }
         }
         if(!aggregate_strong_neighbours(n, fine.offsets, fine.col, scale, coupling, parameters.strength, g))
           break;
@@ -339,7 +341,7 @@ private:
 #pragma omp for schedule(static)
       for(long a = 0; a < na; ++a) {
         if(l == 0)
-          sum_galerkin<D>(L, std::size_t(a), fine.offsets, fine.col, fine.values, fine.diag);
+          sum_galerkin<D>(L, std::size_t(a), fine.offsets, fine.col, fine.values, fine.diag, fine.upper);
         else {
           const Level& f = levels_[l - 1];
           sum_galerkin<R>(L, std::size_t(a), f.offsets.data(), f.col.data(), f.values.data(), f.diag.data());
@@ -372,11 +374,22 @@ private:
       L.single.clear();
   }
 
+  // entry q of the fine matrix as a whole D x D block: in place, or
+  // expanded into `whole` from its upper triangle (the same values)
+  static const double* fine_block(const Csr_view& fine, Index q, std::array<double, DD>& whole)
+  {
+    if(!fine.upper)
+      return fine.values + std::size_t(q) * DD;
+    expand_symmetric_block<D>(fine.upper + std::size_t(q) * R, whole.data());
+    return whole.data();
+  }
+
   // aggregate a's row of the Galerkin product, summed over its members'
-  // entries of the finer level (F x F blocks)
+  // entries of the finer level (F x F blocks; of the fine level, F = D, the
+  // entries' upper triangles when `upper` is given, see Csr_view)
   template <int F>
   static void sum_galerkin(Level& L, std::size_t a, const Index* offsets, const Index* col, const double* values,
-                           const double* diag)
+                           const double* diag, const double* upper = nullptr)
   {
     double* dA = &L.diag[a * RR];
     std::fill(dA, dA + RR, 0.0);
@@ -387,7 +400,16 @@ private:
       add_galerkin_by_blocks<F>(diag + i * F * F, di, di, dA);
       for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
         const Index s = L.slot_of[q];
-        add_galerkin_by_blocks<F>(values + std::size_t(q) * F * F, di, L.offset[col[q]],
+        std::array<double, F * F> whole;
+        const double* A = nullptr;
+        if constexpr(F == D)
+          if(upper) {
+            expand_symmetric_block<D>(upper + std::size_t(q) * R, whole.data());
+            A = whole.data();
+          }
+        if(!A)
+          A = values + std::size_t(q) * F * F;
+        add_galerkin_by_blocks<F>(A, di, L.offset[col[q]],
                                   s == none ? dA : &L.values[std::size_t(s) * RR]);
       }
     }

@@ -21,7 +21,9 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 namespace spring_motion {
@@ -35,6 +37,34 @@ constexpr std::size_t reduction_chunk = 1024;
 constexpr std::size_t min_block_rows = 256;
 /// Elements per chunk of the block assembly (Free_system::element_chunks).
 constexpr std::size_t element_chunk = 512;
+
+/// An allocator whose elements are default-initialised: a vector of
+/// doubles resized with it leaves the new values unwritten (and fresh pages
+/// untouched) instead of zeroing them.
+template <class T>
+struct Unwritten_allocator : std::allocator<T>
+{
+  template <class U>
+  struct rebind
+  {
+    using other = Unwritten_allocator<U>;
+  };
+  Unwritten_allocator() = default;
+  template <class U>
+  Unwritten_allocator(const Unwritten_allocator<U>&) noexcept
+  {
+  }
+  template <class U>
+  void construct(U* p)
+  {
+    ::new(static_cast<void*>(p)) U;
+  }
+  template <class U, class... A>
+  void construct(U* p, A&&... a)
+  {
+    ::new(static_cast<void*>(p)) U(std::forward<A>(a)...);
+  }
+};
 
 /// The spring system of one step restricted to the free vertices: the only
 /// home of a step's linear system, for scalar systems (edge models: one value
@@ -245,7 +275,8 @@ public:
       element_destinations(net, row_of);
     const std::size_t w = block ? DD : 1;
     if(block) {
-      blocks_.assign((nf + col_.size() + bnd_vertex_.size()) * w, 0.0);
+      // not zeroed: every load writes every block it reads (see blocks_)
+      blocks_.resize((nf + col_.size() + bnd_vertex_.size()) * w);
     } else {
       val_.resize(col_.size());
       bnd_val_.resize(bnd_vertex_.size());
@@ -1328,8 +1359,10 @@ private:
   std::vector<double> val_, bnd_val_, diag_, inv_diag_, partial_;
   // block systems: diagonal blocks, off-diagonal ones, those to constrained
   // vertices (block_values()); after an upper load the off-diagonal ones
-  // are written out only when values() asks (so mutable)
-  mutable std::vector<double> blocks_;
+  // are written out only when values() asks (so mutable). Left unwritten
+  // when allocated: the pages of the off-diagonal blocks, which upper loads
+  // never touch, then take no memory (a third of the wing's block arrays).
+  mutable std::vector<double, Unwritten_allocator<double>> blocks_;
   bool off_upper_ = false;         // set_upper_load
   mutable bool off_whole_ = false; // blocks_ holds an upper load's whole off-diagonal blocks
   std::vector<float> single_off_;   // prepare_block_copies

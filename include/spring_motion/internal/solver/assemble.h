@@ -420,7 +420,8 @@ SPRING_MOTION_ALWAYS_INLINE void prefetch_destination(Index d, const Block_targe
 // One request after another, not a loop (which GCC may delete for the
 // same reason when it has not unrolled it).
 template <int D, std::size_t... A>
-SPRING_MOTION_ALWAYS_INLINE void prefetch_destinations(const Index* to, const Block_targets& blocks, std::index_sequence<A...>)
+SPRING_MOTION_ALWAYS_INLINE void prefetch_destinations(const Index* to, const Block_targets& blocks,
+                                                       std::index_sequence<A...>)
 {
   (prefetch_destination<D>(to[A], blocks), ...);
 }

@@ -191,6 +191,22 @@ inline bool fits_single(double a)
   return a == 0 || (a >= 1e-30 && a <= 1e30);
 }
 
+/// single[k] = values[k] as a float for k < n, on `threads` threads; 0 where
+/// a value does not fit (it is not converted: that traps under
+/// feenableexcept). Whether every value fit.
+inline bool copy_to_single(const double* values, float* single, long n, int threads)
+{
+  bool fits = true;
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(&& : fits)
+  for(long k = 0; k < n; ++k) {
+    const double v = values[k];
+    const bool f = fits_single(v);
+    single[k] = float(f ? v : 0.0);
+    fits = fits && f;
+  }
+  return fits;
+}
+
 /// A max that a NaN sticks to, so a NaN can never pass for convergence.
 inline void sticky_max(double& m, double v)
 {

@@ -1103,18 +1103,8 @@ private:
   {
     const std::size_t nb = col_.size();
     if(off_upper_) {
-      bool fits = true;
       single_off_.resize(nb * UD);
-      const long nv = long(nb * UD);
-#pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(&& : fits)
-      for(long k = 0; k < nv; ++k) {
-        // the value when it fits, else 0 (not converted: see above)
-        const double u = upper_off_[std::size_t(k)];
-        const bool f = fits_single(u);
-        single_off_[std::size_t(k)] = float(f ? u : 0.0);
-        fits = fits && f;
-      }
-      single_fits_ = fits;
+      single_fits_ = copy_to_single(upper_off_.data(), single_off_.data(), long(nb * UD), team(threads));
       product_upper_ = true;
       return;
     }

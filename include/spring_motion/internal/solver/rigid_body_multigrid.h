@@ -95,7 +95,7 @@ public:
           scale[i] = block_norm<D>(fine.diag + i * DD);
           for(Index q = fine.offsets[i]; q < fine.offsets[i + 1]; ++q) {
             std::array<double, DD> whole;
-            coupling[q] = block_norm<D>(fine_block(fine, q, whole));
+            coupling[q] = block_norm<D>(whole_block<D>(fine.values, fine.upper, q, whole));
           }
         }
         if(!aggregate_strong_neighbours(n, fine.offsets, fine.col, scale, coupling, parameters.strength, g))
@@ -361,27 +361,25 @@ private:
       // out of a float's range is not converted (it traps under
       // feenableexcept), and then the copy is dropped
       L.single.resize(L.values.size());
-      const long nv = long(L.values.size());
-#pragma omp parallel for schedule(static) num_threads(team(l, threads)) reduction(&& : fits)
-      for(long k = 0; k < nv; ++k) {
-        const double v = L.values[std::size_t(k)];
-        const bool f = fits_single(v);
-        L.single[std::size_t(k)] = float(f ? v : 0.0);
-        fits = fits && f;
-      }
+      fits = copy_to_single(L.values.data(), L.single.data(), long(L.values.size()), team(l, threads));
     }
     if(!fits)
       L.single.clear();
   }
 
-  // entry q of the fine matrix as a whole D x D block: in place, or
-  // expanded into `whole` from its upper triangle (the same values)
-  static const double* fine_block(const Csr_view& fine, Index q, std::array<double, DD>& whole)
+  // entry q of a level's matrix (F x F blocks) as a whole block: in place,
+  // or, given the fine level's upper triangles (F = D, see Csr_view),
+  // expanded from its triangle into `whole` (the same values)
+  template <int F>
+  static const double* whole_block(const double* values, const double* upper, Index q,
+                                   std::array<double, F * F>& whole)
   {
-    if(!fine.upper)
-      return fine.values + std::size_t(q) * DD;
-    expand_symmetric_block<D>(fine.upper + std::size_t(q) * R, whole.data());
-    return whole.data();
+    if constexpr(F == D)
+      if(upper) {
+        expand_symmetric_block<D>(upper + std::size_t(q) * (D * (D + 1) / 2), whole.data());
+        return whole.data();
+      }
+    return values + std::size_t(q) * F * F;
   }
 
   // aggregate a's row of the Galerkin product, summed over its members'
@@ -401,15 +399,7 @@ private:
       for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
         const Index s = L.slot_of[q];
         std::array<double, F * F> whole;
-        const double* A = nullptr;
-        if constexpr(F == D)
-          if(upper) {
-            expand_symmetric_block<D>(upper + std::size_t(q) * R, whole.data());
-            A = whole.data();
-          }
-        if(!A)
-          A = values + std::size_t(q) * F * F;
-        add_galerkin_by_blocks<F>(A, di, L.offset[col[q]],
+        add_galerkin_by_blocks<F>(whole_block<F>(values, upper, q, whole), di, L.offset[col[q]],
                                   s == none ? dA : &L.values[std::size_t(s) * RR]);
       }
     }

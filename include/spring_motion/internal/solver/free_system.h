@@ -739,18 +739,21 @@ private:
       subtract_block_product<D>(s, off + std::size_t(q) * DD, x);
   }
 
-  // s = rhs_k - sum over the row's off-diagonal entries [row_offsets_[k],
-  // end) of A_kj x_j, the entries read from `off` (values(), or their
-  // single-precision copy, Upper: of the upper triangles)
+  // s = rhs - sum over the off-diagonal entries [begin, end) of A_kj x_j
+  // (a part of row k), the entries read from `off` (values(), or their
+  // single-precision copy, Upper: of the upper triangles). The sweeps and
+  // the restriction's residual both sum here (written inline in the
+  // restriction, GCC 12 kept the 2D sum on the stack, a store and a load per
+  // entry; the solve took no less time without them: docs/performance.md).
   template <bool B, class V, bool Upper = false>
-  Row off_residual(const std::vector<Row>& x, const Row& rhs, std::size_t k, Index end, const V* off) const
+  Row off_residual(const std::vector<Row>& x, const Row& rhs, Index begin, Index end, const V* off) const
   {
     Row s = rhs;
     if constexpr(B) {
-      for(Index q = row_offsets_[k]; q < end; ++q)
+      for(Index q = begin; q < end; ++q)
         subtract_off_block<Upper>(s, off, q, x[col_[q]]);
     } else {
-      for(Index q = row_offsets_[k]; q < end; ++q) {
+      for(Index q = begin; q < end; ++q) {
         const double v = double(off[q]);
         const Row& xj = x[col_[q]];
         for(int c = 0; c < D; ++c)
@@ -843,7 +846,7 @@ private:
           if(!forward && K >= backward_prefetch_rows)
             prefetch_row<B, Upper>(off, K - backward_prefetch_rows);
           const Row s =
-              off_residual<B, V, Upper>(x, rhs[K], K, from_zero ? upper_offsets_[K] : row_offsets_[K + 1], off);
+              off_residual<B, V, Upper>(x, rhs[K], row_offsets_[K], from_zero ? upper_offsets_[K] : row_offsets_[K + 1], off);
           Row y;
           if constexpr(B) // the block row's local solve D_K^{-1} s, relaxed
             y = block_product<D>(&inv_diag_[K * DD], s);
@@ -1168,18 +1171,9 @@ private:
       // solver's order, the last colours' rows almost none: equal ranges of
       // rows would leave one thread most of the work.
 #pragma omp parallel for schedule(dynamic, 256) num_threads(nt)
-      for(long k = 0; k < nf; ++k) {
-        Row s{};
-        for(Index q = upper_offsets_[std::size_t(k)]; q < row_offsets_[std::size_t(k) + 1]; ++q) {
-          const Index j = col_[q];
-          if constexpr(B)
-            subtract_off_block<Upper>(s, off, q, z_[j]);
-          else
-            for(int c = 0; c < D; ++c)
-              s[c] -= double(off[q]) * z_[j][c];
-        }
-        s_[std::size_t(k)] = s;
-      }
+      for(long k = 0; k < nf; ++k)
+        s_[std::size_t(k)] =
+            off_residual<B, V, Upper>(z_, Row{}, upper_offsets_[std::size_t(k)], row_offsets_[std::size_t(k) + 1], off);
     } else {
 #pragma omp parallel for schedule(static) num_threads(nt)
       for(long k = 0; k < nf; ++k) {

@@ -13,6 +13,12 @@ minimum and maximum wall time and the ratio of the medians (new / old).
 With `--phases` the command must write a JSON report (`--report FILE`):
 each run's median per-step stiffness, solve and check seconds are read
 from it, and the medians of those over the runs printed for each build.
+`--cpu N` runs both builds on CPU N only (`taskset -c N`): the two virtual
+CPUs of the benchmark machine were seen to differ by 1.4x in speed for
+minutes at a time (docs/performance.md, "Measuring on this machine"), so an
+unpinned one-thread run measures partly which CPU it landed on. Besides the
+ratio of the medians, the median of the round-by-round ratios is printed:
+each pairs two runs a few seconds apart.
 A run that fails stops the script with its exit status.
 """
 import argparse
@@ -33,6 +39,7 @@ def main():
     parser.add_argument("new")
     parser.add_argument("--rounds", type=int, default=20)
     parser.add_argument("--phases", action="store_true")
+    parser.add_argument("--cpu", type=int, help="run both builds on this CPU only (taskset -c)")
     args = parser.parse_args(argv[:split])
     command = argv[split + 1:]
     report = None
@@ -47,7 +54,8 @@ def main():
     for _ in range(args.rounds):
         for label in ("old", "new"):
             start = time.perf_counter()
-            run = subprocess.run([getattr(args, label)] + command, stdout=subprocess.DEVNULL,
+            pin = [] if args.cpu is None else ["taskset", "-c", str(args.cpu)]
+            run = subprocess.run(pin + [getattr(args, label)] + command, stdout=subprocess.DEVNULL,
                                  stderr=subprocess.PIPE, text=True)
             elapsed = time.perf_counter() - start
             if run.returncode != 0:
@@ -65,6 +73,8 @@ def main():
         print(f"{label}  median {1e3 * statistics.median(t):8.1f} ms  min {1e3 * min(t):8.1f}  "
               f"max {1e3 * max(t):8.1f}  ({len(t)} runs)")
     print(f"new / old (medians): {statistics.median(times['new']) / statistics.median(times['old']):.3f}")
+    paired = [n / o for o, n in zip(times["old"], times["new"])]
+    print(f"new / old (median of the {len(paired)} rounds' ratios): {statistics.median(paired):.3f}")
     if report:
         print("per step (median over the run's steps, then over the runs), ms:")
         for label in ("old", "new"):

@@ -845,8 +845,8 @@ private:
           const std::size_t K = std::size_t(forward ? rb + kk : re - 1 - kk);
           if(!forward && K >= backward_prefetch_rows)
             prefetch_row<B, Upper>(off, K - backward_prefetch_rows);
-          const Row s =
-              off_residual<B, V, Upper>(x, rhs[K], row_offsets_[K], from_zero ? upper_offsets_[K] : row_offsets_[K + 1], off);
+          const Index row_end = from_zero ? upper_offsets_[K] : row_offsets_[K + 1];
+          const Row s = off_residual<B, V, Upper>(x, rhs[K], row_offsets_[K], row_end, off);
           Row y;
           if constexpr(B) // the block row's local solve D_K^{-1} s, relaxed
             y = block_product<D>(&inv_diag_[K * DD], s);
@@ -898,7 +898,8 @@ private:
     while(report.iterations < options.max_iterations) {
       const double update = loaded_sweep<B>(options.relaxation_factor, options.threads);
       ++report.iterations;
-      SPRING_MOTION_CHECK(std::isfinite(update), "the solver produced a non-finite value at sweep " << report.iterations);
+      SPRING_MOTION_CHECK(std::isfinite(update),
+                          "the solver produced a non-finite value at sweep " << report.iterations);
       if(stop.done(update)) {
         report.converged = true;
         break;

@@ -17,7 +17,10 @@
 // iterations against the relaxation factor on the 2D cases' systems),
 // --every-step-error (the 2D cases' err columns over the systems of all their
 // steps, not steps 1, middle and last: what a change of the stopping rule
-// does to the error of every solve).
+// does to the error of every solve),
+// --write-box FILE (nothing measured: the box of --box N written as a Medit
+// file, its block's surface labelled 1 and the cube's faces 2, for runs of
+// `spring-motion` on the very mesh the box rows measure).
 // The case `cli` runs the `spring-motion` program on the 2D and wing meshes
 // written to Medit files: whole-process time, peak memory, and the wing with
 // two CPU-bound processes beside it (default threads against one thread).
@@ -91,6 +94,7 @@ struct Setup
   int repeats = 5;
   bool omega_table = false;
   bool every_step_error = false;
+  std::string write_box; // --write-box: only write the box there
 };
 
 // STREAM-like triad a = b + s c over arrays far larger than the caches, best
@@ -987,7 +991,6 @@ void block_targets(const std::vector<Block_row>& rows, const std::string& mesh, 
 
 // ---- the command-line program, as a user runs it ---------------------------------------
 
-#ifdef SPRING_MOTION_BENCH_CLI
 // The case's mesh as a Medit file with labelled boundary facets: 1 on the
 // moving body (every vertex of the facet moving), 2 elsewhere.
 template <int D>
@@ -1016,6 +1019,8 @@ void write_case_mesh(const Case<D>& c, const std::string& path)
   m.label_names = {{1, "body"}, {2, "outer"}};
   sm::write_medit(m, path);
 }
+
+#ifdef SPRING_MOTION_BENCH_CLI
 
 struct Process_stats
 {
@@ -1434,7 +1439,9 @@ Setup parse(int argc, char** argv)
     else if(a == "--box") {
       s.box = std::stoul(value());
       box_given = true;
-    } else if(a == "--omega-table")
+    } else if(a == "--write-box")
+      s.write_box = value();
+    else if(a == "--omega-table")
       s.omega_table = true;
     else if(a == "--every-step-error")
       s.every_step_error = true;
@@ -1447,7 +1454,7 @@ Setup parse(int argc, char** argv)
         s.cases.push_back(m);
     } else {
       std::cerr << "usage: spring_motion_bench [--quick] [--cases naca_coarse,naca_fine,wing,box,cli] [--box N]"
-                   " [--repeats R] [--omega-table] [--every-step-error]\n";
+                   " [--repeats R] [--omega-table] [--every-step-error] [--write-box FILE]\n";
       std::exit(a == "--help" ? 0 : 2);
     }
   }
@@ -1466,6 +1473,18 @@ bool wanted(const Setup& s, const std::string& c)
 int main(int argc, char** argv)
 {
   const Setup setup = parse(argc, argv);
+  if(!setup.write_box.empty()) {
+    const auto c = box_case(setup.box, setup);
+    try {
+      write_case_mesh(c, setup.write_box); // nothing left behind on failure (write_medit)
+    } catch(const std::exception& e) {
+      std::cerr << "spring_motion_bench: " << e.what() << "\n";
+      return 1;
+    }
+    std::printf("wrote %s: %zu vertices, %zu tetrahedra (%s)\n", setup.write_box.c_str(), c.net.points.size(),
+                c.net.number_of_elements(), c.name.c_str());
+    return 0;
+  }
   progress("measuring memory bandwidth (triad)");
   const std::size_t triad_n = setup.quick ? (std::size_t(1) << 22) : (std::size_t(1) << 25);
   const std::vector<double> bandwidth = {triad_bandwidth(1, triad_n), triad_bandwidth(2, triad_n)};

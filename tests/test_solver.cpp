@@ -363,6 +363,29 @@ TEST_CASE("solvers: a singular diagonal block names its vertex", "[solver][block
   }
 }
 
+TEST_CASE("solvers: a NaN in the maxima that stop a solve sticks, whatever values follow it", "[solver][errors]")
+{
+  // the solver's maxima (updates, residuals: per chunk of rows, then over
+  // the chunks) are runs of sticky_max; a NaN that a later finite value
+  // replaced would let a solve pass for converged
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  auto run = [](std::initializer_list<double> values) {
+    double m = 0;
+    for(double v : values)
+      internal::sticky_max(m, v);
+    return m;
+  };
+  CHECK(std::isnan(run({nan})));
+  CHECK(std::isnan(run({nan, 1.0})));
+  CHECK(std::isnan(run({2.0, nan, 1.0, 3.0})));
+  CHECK(std::isnan(run({1.0, nan, inf})));
+  CHECK(std::isnan(run({inf, nan, 0.0})));
+  // without a NaN, the plain maximum
+  CHECK(run({}) == 0.0);
+  CHECK(run({1.0, 3.0, 2.0}) == 3.0);
+  CHECK(run({1.0, inf, 2.0}) == inf);
+}
+
 TEST_CASE("solvers: a zero-length edge is reported as coincident vertices", "[solver][errors]")
 {
   Indexed_mesh<2> mesh;

@@ -207,10 +207,12 @@ inline bool copy_to_single(const double* values, float* single, long n, int thre
   return fits;
 }
 
-/// A max that a NaN sticks to, so a NaN can never pass for convergence.
+/// A max that a NaN sticks to, so a NaN can never pass for convergence:
+/// a NaN v is taken (v <= m fails), and a NaN m is kept (m == m fails),
+/// whatever values come after it.
 inline void sticky_max(double& m, double v)
 {
-  if(!(v <= m))
+  if(!(v <= m) && m == m)
     m = v;
 }
 

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cfenv>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -70,6 +71,24 @@ TEST_CASE("thread chooser: a positive request is obeyed and nothing is measured"
 }
 
 #ifdef _OPENMP
+TEST_CASE("thread chooser: its costs not yet measured raise no floating-point exception", "[threads][errors]")
+{
+  // a cost not yet measured is a NaN; an ordered comparison with it raises
+  // FE_INVALID (SIGFPE under feenableexcept, as in tests/test_fp_traps.cpp
+  // run alone on an idle machine): every choice of the first steps, with
+  // the team dearer, then cheaper, then a probe of one thread
+  omp_set_num_threads(2);
+  for(double one_thread : {0.5, 2.0, 8.0}) {
+    INFO("one thread's cost " << one_thread);
+    Thread_chooser c{[] { return 2; }};
+    std::feclearexcept(FE_ALL_EXCEPT);
+    const int team = team_steps(c, 0, 40, [](int) { return 1.0; }, [&](int) { return one_thread; });
+    CHECK(std::fetestexcept(FE_INVALID) == 0);
+    CHECK(team > 0); // the team was tried: the comparisons above ran
+    CHECK(team < 40); // and one thread
+  }
+}
+
 TEST_CASE("thread chooser: settles on the cheaper option and follows a change of load", "[threads]")
 {
   omp_set_num_threads(2);

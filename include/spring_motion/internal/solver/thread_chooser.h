@@ -5,6 +5,7 @@
 #include <spring_motion/internal/solver/free_cores.h>
 #include <spring_motion/internal/solver/threads.h>
 
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <limits>
@@ -150,7 +151,10 @@ public:
     if(probing_ == best_) {
       ++since_probe_;
       // one dearer step of the choice is not measured: the second in a row is
-      const bool dearer = cost > cost_[1 - best_];
+      // the comparisons with a cost that may be unknown (NaN) are the quiet
+      // ones: an ordered comparison with a NaN raises FE_INVALID, a SIGFPE
+      // in a program that traps it
+      const bool dearer = std::isgreater(cost, cost_[1 - best_]);
       dearer_ = dearer ? dearer_ + 1 : 0;
       if(dearer_ == 1)
         return;
@@ -159,11 +163,11 @@ public:
       dearer_ = 0;
     }
     cost_[probing_] = cost;
-    const int cheaper = cost_[1] == cost_[1] && cost_[1] < cost_[0] ? 1 : 0;
+    const int cheaper = std::isless(cost_[1], cost_[0]) ? 1 : 0;
     if(cheaper != best_) {
       best_ = cheaper;
       dearer_ = 0;
-      const bool clear = cost_[1 - cheaper] >= 2 * cost_[cheaper];
+      const bool clear = std::isgreaterequal(cost_[1 - cheaper], 2 * cost_[cheaper]);
       interval_ = clear ? 32 : 8;
     } else if(probing_ != best_ && interval_ < 64)
       interval_ *= 2;

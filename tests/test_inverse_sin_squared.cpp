@@ -208,6 +208,84 @@ TEST_CASE("inverse sin^2: two tetrahedra at once give each one's values bitwise"
   }
 }
 
+TEST_CASE("inverse sin^2: four tetrahedra at once give each one's values bitwise", "[stiffness][angles]")
+{
+  if(!four_lanes_available()) {
+    WARN("this processor has no AVX: the four-lane form is not used here, and not tested");
+    return;
+  }
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+  // the shapes of the pair test: every scale, slivers, flat, collapsed and
+  // point-like tetrahedra, each in every lane
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> d(-1, 1), scale(-150, 150);
+  std::vector<std::array<P3, 4>> tets;
+  for(int n = 0; n < 300; ++n) {
+    const double s = std::pow(10.0, n % 3 == 0 ? scale(rng) : 0.0);
+    std::array<P3, 4> p;
+    for(auto& q : p)
+      q = {s * d(rng), s * d(rng), s * d(rng)};
+    tets.push_back(p);
+  }
+  for(double h : {1e-4, 1e-9, 0.0})
+    tets.push_back({{{0, 0, 0}, {1, 0, h}, {1, 1, 0}, {0, 1, h}}});
+  tets.push_back({{{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 1}}});
+  tets.push_back({{{2, 2, 2}, {2, 2, 2}, {2, 2, 2}, {2, 2, 2}}});
+  tets.push_back({{{0, 0, 0}, {1e150, 0, 0}, {0, 1e-150, 0}, {0, 0, 1}}});
+  const auto corners = [](const std::array<P3, 4>& p) {
+    return std::array<const double*, 4>{p[0].data(), p[1].data(), p[2].data(), p[3].data()};
+  };
+  std::uniform_int_distribution<std::size_t> any(0, tets.size() - 1);
+  for(std::size_t i = 0; i < tets.size(); ++i) {
+    // tetrahedron i in lane i % 4, the others at random (itself too)
+    std::size_t in[4];
+    for(std::size_t l = 0; l < 4; ++l)
+      in[l] = l == i % 4 ? i : (i % 5 == 0 ? i : any(rng));
+    const std::array<const double*, 4> t[4] = {corners(tets[in[0]]), corners(tets[in[1]]), corners(tets[in[2]]),
+                                               corners(tets[in[3]])};
+    double out[4][6];
+    dihedral_inverse_sin_squared(t, out);
+    for(std::size_t l = 0; l < 4; ++l) {
+      INFO("tetrahedron " << in[l] << " in lane " << l);
+      const auto one = dihedral_inverse_sin_squared(tets[in[l]]);
+      CHECK(std::memcmp(out[l], one.data(), sizeof out[l]) == 0);
+    }
+  }
+#endif
+}
+
+TEST_CASE("inverse sin^2: the 3D stiffness pass gives each tetrahedron's values bitwise, any count",
+          "[stiffness][angles]")
+{
+  // the pass takes the tetrahedra four (AVX) or two at a time, the last
+  // group filled with the last one: the grid-scaled stiffness of 1 to 6
+  // tetrahedra against the same sums formed from one tetrahedron at a time
+  for(std::size_t count = 1; count <= 6; ++count) {
+    const auto net = perturbed_cube(unsigned(10 + count), count);
+    const auto fast = stiffness(net, Grid_scaled_stiffness{});
+    std::vector<std::vector<double>> sines(net.number_of_edges());
+    for(std::size_t t = 0; t < net.number_of_elements(); ++t) {
+      std::array<P3, 4> p;
+      for(std::size_t v = 0; v < 4; ++v)
+        p[v] = net.points[net.elements[t][v]];
+      const auto s = dihedral_inverse_sin_squared(p);
+      for(std::size_t q = 0; q < 6; ++q)
+        sines[net.element_edges[t * 6 + q]].push_back(s[q]);
+    }
+    REQUIRE(fast.size() == sines.size());
+    for(std::size_t e = 0; e < fast.size(); ++e) {
+      INFO(count << " tetrahedra, edge " << e);
+      const auto& ed = net.edges[e];
+      double l = 0;
+      for(std::size_t c = 0; c < 3; ++c)
+        l += (net.points[ed[0]][c] - net.points[ed[1]][c]) * (net.points[ed[0]][c] - net.points[ed[1]][c]);
+      const double ref = Grid_scaled_stiffness{}(std::sqrt(l), Inverse_sin_squared{sines[e].data(), sines[e].size()},
+                                                 Stiffness_context{3, net.longest_initial_edge});
+      CHECK(std::memcmp(&fast[e], &ref, sizeof ref) == 0);
+    }
+  }
+}
+
 TEST_CASE("inverse sin^2: two triangles at once give each one's values bitwise", "[stiffness][angles]")
 {
   std::mt19937 rng(6);

@@ -20,6 +20,29 @@
 #define SPRING_MOTION_HAS_DOUBLE_PAIR 0
 #endif
 
+// Four elements in the four lanes of one AVX register, on processors that
+// have AVX (four_lanes_available(), asked at run time: the build still runs
+// on any x86-64 machine). A kernel's four-lane form is called only from a
+// function compiled for AVX (target attribute) into which the kernel is
+// always inlined; the helpers that take or return a four-lane value are
+// compiled for AVX themselves, so such a value never passes between code
+// of the two instruction sets. GCC still warns that the kernel's calls of
+// them would pass it differently without AVX (-Wpsabi): silenced around
+// the kernels that have a four-lane form, and only there. Each lane runs
+// the scalar code's IEEE operations in its order (AVX alone brings no fused
+// multiply-add), so the values are the same bits.
+#if SPRING_MOTION_HAS_DOUBLE_PAIR && defined(__x86_64__)
+#define SPRING_MOTION_HAS_DOUBLE_QUAD 1
+#else
+#define SPRING_MOTION_HAS_DOUBLE_QUAD 0
+#endif
+
+#if defined(__GNUC__)
+#define SPRING_MOTION_LANES_INLINE inline __attribute__((always_inline))
+#else
+#define SPRING_MOTION_LANES_INLINE inline
+#endif
+
 namespace spring_motion {
 namespace internal {
 
@@ -34,17 +57,45 @@ inline Double_pair lane_abs(Double_pair v)
 }
 #endif
 
-inline double lane_abs(double v) { return std::abs(v); }
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+typedef double Double_quad __attribute__((vector_size(32)));
+typedef long long Double_quad_mask __attribute__((vector_size(32)));
+
+__attribute__((target("avx"))) inline Double_quad lane_abs(Double_quad v)
+{
+  return Double_quad(Double_quad_mask(v) & ~Double_quad_mask(Double_quad{-0.0, -0.0, -0.0, -0.0}));
+}
+
+/// Whether this processor (and its operating system) runs AVX code: the
+/// kernels four elements at a time are called only then.
+inline bool four_lanes_available()
+{
+  static const bool avx = __builtin_cpu_supports("avx");
+  return avx;
+}
+#else
+inline bool four_lanes_available() { return false; }
+#endif
+
+SPRING_MOTION_LANES_INLINE double lane_abs(double v) { return std::abs(v); }
 
 /// v in every lane of T.
 template <class T>
-inline T lanes_of(double v)
+SPRING_MOTION_LANES_INLINE T lanes_of(double v)
 {
   if constexpr(std::is_same_v<T, double>)
     return v;
   else
     return T{v, v};
 }
+
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+template <>
+__attribute__((target("avx"))) inline Double_quad lanes_of<Double_quad>(double v)
+{
+  return Double_quad{v, v, v, v};
+}
+#endif
 
 /// kernel(c, out), a kernel written over the lane type, on two inputs at
 /// once, one per lane: `a` and `b` each point to C corners of N

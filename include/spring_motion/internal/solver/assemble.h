@@ -73,6 +73,42 @@ struct Stiffness_scratch
   }
 };
 
+/// 1/sin^2 of the dihedral angles of the m tetrahedra of the traversal,
+/// four at a time (double_pair.h) where the processor has AVX, written to
+/// their slots in `angles`; false, with nothing written, in 2D or without
+/// AVX. The last group of a count not a multiple of 4 repeats the last
+/// tetrahedron.
+template <int D>
+bool element_inverse_sin_squared_in_fours(const Angle_slots& slots, const std::vector<std::array<double, D>>& xt,
+                                          long m, std::vector<double>& angles, int threads)
+{
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+  if constexpr(D == 3) {
+    if(!four_lanes_available())
+      return false;
+    constexpr std::size_t E = 6;
+    const long quads = (m + 3) / 4;
+#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
+    for(long h = 0; h < quads; ++h) {
+      std::size_t e[4];
+      std::array<const double*, 4> t[4];
+      for(std::size_t l = 0; l < 4; ++l) {
+        e[l] = std::min(4 * std::size_t(h) + l, std::size_t(m) - 1);
+        t[l] = traversal_element_corners<3>(slots, xt, e[l]);
+      }
+      double a[4][6];
+      dihedral_inverse_sin_squared(t, a);
+      for(std::size_t l = 0; l < 4; ++l)
+        for(std::size_t q = 0; q < E; ++q)
+          angles[slots.slot_position[e[l] * E + q]] = a[l][q];
+    }
+    return true;
+  }
+#endif
+  (void)slots, (void)xt, (void)m, (void)angles, (void)threads;
+  return false;
+}
+
 /// Edge stiffness k_e of `model` at positions x.
 /// Throws when the model returns a negative or non-finite value.
 ///
@@ -109,18 +145,20 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
     copy_in_traversal_order<D>(slots, x, xt, threads);
     angles.resize(std::size_t(m) * E + padding);
     if constexpr(sines) {
-      // two elements at once (double_pair.h); an odd last one is paired
-      // with itself
-      const long pairs = (m + 1) / 2;
+      if(!element_inverse_sin_squared_in_fours<D>(slots, xt, m, angles, threads)) {
+        // two elements at once (double_pair.h); an odd last one is paired
+        // with itself
+        const long pairs = (m + 1) / 2;
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
-      for(long h = 0; h < pairs; ++h) {
-        const std::size_t i = 2 * std::size_t(h), j = std::min(i + 1, std::size_t(m) - 1);
-        const auto a = element_edge_inverse_sin_squared<D>(traversal_element_corners<D>(slots, xt, i),
-                                                           traversal_element_corners<D>(slots, xt, j));
-        for(std::size_t q = 0; q < E; ++q)
-          angles[slots.slot_position[i * E + q]] = a[0][q];
-        for(std::size_t q = 0; q < E; ++q)
-          angles[slots.slot_position[j * E + q]] = a[1][q];
+        for(long h = 0; h < pairs; ++h) {
+          const std::size_t i = 2 * std::size_t(h), j = std::min(i + 1, std::size_t(m) - 1);
+          const auto a = element_edge_inverse_sin_squared<D>(traversal_element_corners<D>(slots, xt, i),
+                                                             traversal_element_corners<D>(slots, xt, j));
+          for(std::size_t q = 0; q < E; ++q)
+            angles[slots.slot_position[i * E + q]] = a[0][q];
+          for(std::size_t q = 0; q < E; ++q)
+            angles[slots.slot_position[j * E + q]] = a[1][q];
+        }
       }
     } else {
 #pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))

@@ -73,6 +73,27 @@ Spring_network<3> perturbed_cube(unsigned seed, std::size_t count = 6)
   return internal::with_face_slots(make_spring_network<3>(p, tets)); // face-angle models read them
 }
 
+// Random tetrahedra at every scale, slivers, then the degenerate cases:
+// flat, a collapsed edge, a point, one huge and one tiny corner offset.
+std::vector<std::array<P3, 4>> varied_tetrahedra(std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> d(-1, 1), scale(-150, 150);
+  std::vector<std::array<P3, 4>> tets;
+  for(int n = 0; n < 300; ++n) {
+    const double s = std::pow(10.0, n % 3 == 0 ? scale(rng) : 0.0);
+    std::array<P3, 4> p;
+    for(auto& q : p)
+      q = {s * d(rng), s * d(rng), s * d(rng)};
+    tets.push_back(p);
+  }
+  for(double h : {1e-4, 1e-9, 0.0})
+    tets.push_back({{{0, 0, 0}, {1, 0, h}, {1, 1, 0}, {0, 1, h}}});
+  tets.push_back({{{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 1}}});
+  tets.push_back({{{2, 2, 2}, {2, 2, 2}, {2, 2, 2}, {2, 2, 2}}});
+  tets.push_back({{{0, 0, 0}, {1e150, 0, 0}, {0, 1e-150, 0}, {0, 0, 1}}});
+  return tets;
+}
+
 template <class Model>
 std::vector<double> stiffness(const Spring_network<3>& net, const Model& model)
 {
@@ -175,23 +196,8 @@ TEST_CASE("inverse sin^2: scale-free from 1e-150 to 1e150, slivers, flat and col
 
 TEST_CASE("inverse sin^2: two tetrahedra at once give each one's values bitwise", "[stiffness][angles]")
 {
-  // random shapes at every scale, slivers, and the degenerate cases: flat,
-  // a collapsed edge, a point, one huge and one tiny corner offset
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> d(-1, 1), scale(-150, 150);
-  std::vector<std::array<P3, 4>> tets;
-  for(int n = 0; n < 300; ++n) {
-    const double s = std::pow(10.0, n % 3 == 0 ? scale(rng) : 0.0);
-    std::array<P3, 4> p;
-    for(auto& q : p)
-      q = {s * d(rng), s * d(rng), s * d(rng)};
-    tets.push_back(p);
-  }
-  for(double h : {1e-4, 1e-9, 0.0})
-    tets.push_back({{{0, 0, 0}, {1, 0, h}, {1, 1, 0}, {0, 1, h}}});
-  tets.push_back({{{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 1}}});
-  tets.push_back({{{2, 2, 2}, {2, 2, 2}, {2, 2, 2}, {2, 2, 2}}});
-  tets.push_back({{{0, 0, 0}, {1e150, 0, 0}, {0, 1e-150, 0}, {0, 0, 1}}});
+  const auto tets = varied_tetrahedra(rng);
   const auto corners = [](const std::array<P3, 4>& p) {
     return std::array<const double*, 4>{p[0].data(), p[1].data(), p[2].data(), p[3].data()};
   };
@@ -215,23 +221,9 @@ TEST_CASE("inverse sin^2: four tetrahedra at once give each one's values bitwise
     return;
   }
 #if SPRING_MOTION_HAS_DOUBLE_QUAD
-  // the shapes of the pair test: every scale, slivers, flat, collapsed and
-  // point-like tetrahedra, each in every lane
+  // the pair test's shapes, each in every lane
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> d(-1, 1), scale(-150, 150);
-  std::vector<std::array<P3, 4>> tets;
-  for(int n = 0; n < 300; ++n) {
-    const double s = std::pow(10.0, n % 3 == 0 ? scale(rng) : 0.0);
-    std::array<P3, 4> p;
-    for(auto& q : p)
-      q = {s * d(rng), s * d(rng), s * d(rng)};
-    tets.push_back(p);
-  }
-  for(double h : {1e-4, 1e-9, 0.0})
-    tets.push_back({{{0, 0, 0}, {1, 0, h}, {1, 1, 0}, {0, 1, h}}});
-  tets.push_back({{{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 1}}});
-  tets.push_back({{{2, 2, 2}, {2, 2, 2}, {2, 2, 2}, {2, 2, 2}}});
-  tets.push_back({{{0, 0, 0}, {1e150, 0, 0}, {0, 1e-150, 0}, {0, 0, 1}}});
+  const auto tets = varied_tetrahedra(rng);
   const auto corners = [](const std::array<P3, 4>& p) {
     return std::array<const double*, 4>{p[0].data(), p[1].data(), p[2].data(), p[3].data()};
   };

@@ -268,11 +268,10 @@ TEST_CASE("inverse sin^2: the 3D stiffness pass gives each tetrahedron's values 
     for(std::size_t e = 0; e < fast.size(); ++e) {
       INFO(count << " tetrahedra, edge " << e);
       const auto& ed = net.edges[e];
-      double l = 0;
-      for(std::size_t c = 0; c < 3; ++c)
-        l += (net.points[ed[0]][c] - net.points[ed[1]][c]) * (net.points[ed[0]][c] - net.points[ed[1]][c]);
-      const double ref = Grid_scaled_stiffness{}(std::sqrt(l), Inverse_sin_squared{sines[e].data(), sines[e].size()},
-                                                 Stiffness_context{3, net.longest_initial_edge});
+      const double ref =
+          Grid_scaled_stiffness{}(distance<3>(net.points[ed[0]], net.points[ed[1]]),
+                                  Inverse_sin_squared{sines[e].data(), sines[e].size()},
+                                  Stiffness_context{3, net.longest_initial_edge});
       CHECK(std::memcmp(&fast[e], &ref, sizeof ref) == 0);
     }
   }

@@ -535,9 +535,9 @@ inline std::array<std::array<double, 6>, 2> dihedral_inverse_sin_squared(const s
 #if SPRING_MOTION_HAS_DOUBLE_QUAD
 /// dihedral_inverse_sin_squared() of four tetrahedra at once, corners t[0]
 /// to t[3], one per lane of an AVX register (double_pair.h): out[l] gets
-/// tetrahedron l's values, the same bits, in about 0.6 times the time of
-/// two pairs (the divisions and products of four tetrahedra per
-/// instruction). Call only where four_lanes_available().
+/// tetrahedron l's values, the same bits, with the divisions and products
+/// of four tetrahedra in one instruction each. Call only where
+/// four_lanes_available().
 __attribute__((target("avx"))) inline void dihedral_inverse_sin_squared(const std::array<const double*, 4> (&t)[4],
                                                                         double (&out)[4][6])
 {

@@ -106,6 +106,35 @@ double ns_per_element_in_twos(const Model& model, const std::vector<Simplex<D>>&
   }
 }
 
+// The same through symmetric_blocks_of_four, four simplices per call (the
+// assembly's form where the model has it and the processor runs AVX); 0
+// otherwise.
+template <int D, class Model>
+double ns_per_element_in_fours(const Model& model, const std::vector<Simplex<D>>& el, int repetitions)
+{
+  if constexpr(!sm::internal::Has_symmetric_blocks_of_four<Model, D>::value)
+    return 0;
+  else {
+    if(!sm::internal::four_lanes_available())
+      return 0;
+    constexpr int size = (D + 1) * (D + 2) / 2 * D * (D + 1) / 2;
+    return median_ns_per_element(el.size(), repetitions, [&] {
+      double sink = 0;
+      for(std::size_t k = 0; k + 3 < el.size(); k += 4) {
+        std::array<std::array<double, size>, 4> K;
+        if(!model.symmetric_blocks_of_four({&el[k], &el[k + 1], &el[k + 2], &el[k + 3]},
+                                           {K[0].data(), K[1].data(), K[2].data(), K[3].data()}))
+          for(std::size_t l = 0; l < 4; ++l) {
+            K[l].fill(0.0);
+            model.add_symmetric_blocks(el[k + l], K[l].data());
+          }
+        sink += K[0][0] + K[1][0] + K[2][0] + K[3][0];
+      }
+      return sink;
+    });
+  }
+}
+
 template <class Model>
 void row(const char* name, const Model& model, int repetitions)
 {
@@ -115,7 +144,12 @@ void row(const char* name, const Model& model, int repetitions)
               ns_per_element<3>(model, tetrahedra, repetitions));
   const double two_2 = ns_per_element_in_twos<2>(model, triangles, repetitions);
   if(two_2 > 0)
-    std::printf(" %12.1f %14.1f\n", two_2, ns_per_element_in_twos<3>(model, tetrahedra, repetitions));
+    std::printf(" %12.1f %14.1f", two_2, ns_per_element_in_twos<3>(model, tetrahedra, repetitions));
+  else
+    std::printf(" %12s %14s", "-", "-");
+  const double four_2 = ns_per_element_in_fours<2>(model, triangles, repetitions);
+  if(four_2 > 0)
+    std::printf(" %12.1f %14.1f\n", four_2, ns_per_element_in_fours<3>(model, tetrahedra, repetitions));
   else
     std::printf(" %12s %14s\n", "-", "-");
 }
@@ -134,9 +168,10 @@ int main(int argc, char** argv)
     }
   }
   std::printf("Element kernels, one thread, 20000 random simplices, median of %d repetitions:\n"
-              "(in twos: two simplices per call, the assembly's form where the model has it)\n"
-              "%-26s %12s %14s %12s %14s\n",
-              repetitions, "model", "ns/triangle", "ns/tetrahedron", "in twos", "in twos");
+              "(in twos: two simplices per call, the assembly's form where the model has it; in fours: four,\n"
+              "its form where the processor runs AVX too, '-' where it does not)\n"
+              "%-26s %12s %14s %12s %14s %12s %14s\n",
+              repetitions, "model", "ns/triangle", "ns/tetrahedron", "in twos", "in twos", "in fours", "in fours");
   sm::Ball_vertex_stiffness p1, p2, p3;
   p2.exponent = 2;
   p3.exponent = 3;

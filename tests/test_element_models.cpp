@@ -736,6 +736,103 @@ TEST_CASE("ball-vertex: two simplices at once give each one's distinct blocks, b
   CHECK_FALSE(internal::Has_symmetric_blocks_of_two<Torsional_stiffness, 2>::value);
 }
 
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+namespace {
+
+// symmetric_blocks_of_four(p) against add_symmetric_blocks on each (from
+// zero), as check_blocks_of_two
+template <int D, class Model>
+bool check_blocks_of_four(const Model& model, const std::array<Simplex<D>, 4>& p, std::mt19937& rng)
+{
+  const std::size_t n = (D + 1) * (D + 2) / 2 * D * (D + 1) / 2;
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::array<std::vector<double>, 4> start, S;
+  for(std::size_t l = 0; l < 4; ++l) {
+    start[l].resize(n);
+    for(double& x : start[l])
+      x = u(rng);
+    S[l] = start[l];
+  }
+  const bool taken = model.symmetric_blocks_of_four({&p[0], &p[1], &p[2], &p[3]},
+                                                    {S[0].data(), S[1].data(), S[2].data(), S[3].data()});
+  for(std::size_t l = 0; l < 4; ++l) {
+    if(!taken) {
+      CHECK(S[l] == start[l]);
+      continue;
+    }
+    std::vector<double> one(n, 0.0);
+    model.add_symmetric_blocks(p[l], one.data());
+    for(std::size_t k = 0; k < n; ++k) // the same bits, not just close
+      CHECK(std::memcmp(&S[l][k], &one[k], sizeof(double)) == 0);
+  }
+  return taken;
+}
+
+} // namespace
+
+TEST_CASE("ball-vertex: four simplices at once give each one's distinct blocks, bit for bit",
+          "[stiffness][ball_vertex]")
+{
+  if(!internal::four_lanes_available()) {
+    WARN("this processor has no AVX: the four-lane form is not used here");
+    return;
+  }
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto random_simplices = [&](auto dimension) {
+    constexpr int D = decltype(dimension)::value;
+    std::array<Simplex<D>, 4> p;
+    for(auto& s : p)
+      for(auto& x : s)
+        for(double& c : x)
+          c = u(rng);
+    return p;
+  };
+  using Two = std::integral_constant<int, 2>;
+  using Three = std::integral_constant<int, 3>;
+  for(double exponent : {1.0, 2.0, 3.0}) {
+    Ball_vertex_stiffness m;
+    m.exponent = exponent;
+    m.weight = 0.7;
+    const With_ball_vertex<Grid_scaled_stiffness> combined{{}, m};
+    int taken = 0;
+    for(int trial = 0; trial < 200; ++trial) {
+      taken += check_blocks_of_four<2>(m, random_simplices(Two{}), rng);
+      taken += check_blocks_of_four<3>(m, random_simplices(Three{}), rng);
+    }
+    CHECK(taken == 400); // ordinary simplices take the four-lane form
+    CHECK(check_blocks_of_four<2>(combined, {triangle, obtuse_triangle, obtuse_triangle, triangle}, rng));
+    CHECK(check_blocks_of_four<3>(combined, {sliver, tetrahedron, tetrahedron, sliver}, rng));
+    // one lane outside the uncapped range, flat, or with a tiny edge:
+    // declined, whichever lane it is
+    const Simplex<2> flat{{{0, 0}, {1, 0}, {2, 0}}};
+    const Simplex<3> tiny_edge{{{0, 0, 0}, {1e-60, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    for(std::size_t lane = 0; lane < 4; ++lane) {
+      for(const double f : {1e-60, 1e-200, 1e160}) {
+        std::array<Simplex<2>, 4> t{triangle, obtuse_triangle, triangle, obtuse_triangle};
+        std::array<Simplex<3>, 4> s{tetrahedron, sliver, tetrahedron, sliver};
+        t[lane] = scaled<2>(triangle, f);
+        s[lane] = scaled<3>(sliver, f);
+        CHECK_FALSE(check_blocks_of_four<2>(m, t, rng));
+        CHECK_FALSE(check_blocks_of_four<3>(m, s, rng));
+      }
+      std::array<Simplex<2>, 4> t{triangle, triangle, triangle, triangle};
+      std::array<Simplex<3>, 4> s{tetrahedron, tetrahedron, tetrahedron, tetrahedron};
+      t[lane] = flat;
+      s[lane] = tiny_edge;
+      CHECK_FALSE(check_blocks_of_four<2>(m, t, rng));
+      CHECK_FALSE(check_blocks_of_four<3>(m, s, rng));
+    }
+  }
+  Ball_vertex_stiffness other_power;
+  other_power.exponent = 1.5;
+  CHECK_FALSE(check_blocks_of_four<2>(other_power, {triangle, triangle, obtuse_triangle, obtuse_triangle}, rng));
+  CHECK_FALSE(check_blocks_of_four<3>(other_power, {tetrahedron, sliver, sliver, tetrahedron}, rng));
+  CHECK(internal::Has_symmetric_blocks_of_four<With_ball_vertex<Lineal_stiffness>, 3>::value);
+  CHECK_FALSE(internal::Has_symmetric_blocks_of_four<Torsional_stiffness, 2>::value);
+}
+#endif
+
 namespace {
 
 // Ball-vertex springs that do not say they have no edge springs: the

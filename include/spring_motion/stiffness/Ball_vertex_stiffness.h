@@ -13,6 +13,15 @@
 #include <cmath>
 #include <cstddef>
 
+// Static helpers that take or return lane values, always inlined (see
+// double_pair.h: a four-lane value must not pass between functions compiled
+// for different instruction sets)
+#if defined(__GNUC__)
+#define SPRING_MOTION_LANES_STATIC static inline __attribute__((always_inline))
+#else
+#define SPRING_MOTION_LANES_STATIC static inline
+#endif
+
 namespace spring_motion {
 
 /// The altitude of a simplex from one vertex to the facet facing it: its
@@ -139,13 +148,37 @@ struct Ball_vertex_stiffness
   bool symmetric_blocks_of_two(const std::array<std::array<double, 2>, 3>& p,
                                const std::array<std::array<double, 2>, 3>& q, double* S, double* T) const
   {
-    return blocks_of_two<2>(p, q, S, T);
+#if SPRING_MOTION_HAS_DOUBLE_PAIR
+    return blocks_in_lanes<2, internal::Double_pair, 2>({&p, &q}, {S, T});
+#else
+    return false;
+#endif
   }
   bool symmetric_blocks_of_two(const std::array<std::array<double, 3>, 4>& p,
                                const std::array<std::array<double, 3>, 4>& q, double* S, double* T) const
   {
-    return blocks_of_two<3>(p, q, S, T);
+#if SPRING_MOTION_HAS_DOUBLE_PAIR
+    return blocks_in_lanes<3, internal::Double_pair, 2>({&p, &q}, {S, T});
+#else
+    return false;
+#endif
   }
+
+  /// The same for four simplices at once, p[l]'s values stored in S[l], one
+  /// simplex per lane of an AVX register; false when any of them needs the
+  /// one-simplex form. Call only where internal::four_lanes_available().
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+  __attribute__((target("avx"))) bool symmetric_blocks_of_four(
+      const std::array<const std::array<std::array<double, 2>, 3>*, 4>& p, const std::array<double*, 4>& S) const
+  {
+    return blocks_in_lanes<2, internal::Double_quad, 4>(p, S);
+  }
+  __attribute__((target("avx"))) bool symmetric_blocks_of_four(
+      const std::array<const std::array<std::array<double, 3>, 4>*, 4>& p, const std::array<double*, 4>& S) const
+  {
+    return blocks_in_lanes<3, internal::Double_quad, 4>(p, S);
+  }
+#endif
 
   Model_description description(int) const
   {
@@ -153,6 +186,10 @@ struct Ball_vertex_stiffness
   }
 
 private:
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi" // see double_pair.h
+#endif
   // The simplex's facet normals N_i (facet i faces vertex i), each as long
   // as its facet's measure (2D: the edge's length; 3D: twice the triangle's
   // area) and all pointing to the same side, and the signed measure V with
@@ -171,7 +208,7 @@ private:
     T measure;
   };
   template <class T>
-  static Facet_normals<2, T> facet_normals(const std::array<std::array<T, 2>, 3>& p)
+  SPRING_MOTION_LANES_STATIC Facet_normals<2, T> facet_normals(const std::array<std::array<T, 2>, 3>& p)
   {
     Facet_normals<2, T> f;
     for(int i = 0; i < 3; ++i) { // the edge from p_j to p_l turned a quarter
@@ -179,23 +216,23 @@ private:
       const auto& l = p[std::size_t((i + 2) % 3)];
       f.normal[std::size_t(i)] = {l[1] - j[1], j[0] - l[0]};
     }
-    f.measure = dot<2>(sub<2>(p[0], p[1]), f.normal[0]);
+    dot<2>(sub<2>(p[0], p[1]), f.normal[0], f.measure);
     return f;
   }
   template <class T>
-  static Facet_normals<3, T> facet_normals(const std::array<std::array<T, 3>, 4>& p)
+  SPRING_MOTION_LANES_STATIC Facet_normals<3, T> facet_normals(const std::array<std::array<T, 3>, 4>& p)
   {
     const auto e1 = sub<3>(p[1], p[0]), e2 = sub<3>(p[2], p[0]), e3 = sub<3>(p[3], p[0]);
     // N_0 from its own facet's edges, not as -(N_1 + N_2 + N_3): no
     // cancellation when facet 0 is small
     Facet_normals<3, T> f;
     f.normal = {cross(sub<3>(p[3], p[1]), sub<3>(p[2], p[1])), cross(e2, e3), cross(e3, e1), cross(e1, e2)};
-    f.measure = dot<3>(e1, f.normal[1]);
+    dot<3>(e1, f.normal[1], f.measure);
     return f;
   }
 
   template <int D, class T>
-  static std::array<T, D> sub(const std::array<T, D>& a, const std::array<T, D>& b)
+  SPRING_MOTION_LANES_STATIC std::array<T, D> sub(const std::array<T, D>& a, const std::array<T, D>& b)
   {
     std::array<T, D> r;
     for(std::size_t c = 0; c < D; ++c)
@@ -203,40 +240,43 @@ private:
     return r;
   }
   template <int D, class T>
-  static T dot(const std::array<T, D>& a, const std::array<T, D>& b)
+  SPRING_MOTION_LANES_STATIC void dot(const std::array<T, D>& a, const std::array<T, D>& b, T& s)
   {
-    T s = internal::lanes_of<T>(0.0);
+    // s as an argument, not returned: a four-lane value returned from code
+    // not compiled for AVX would change the ABI (double_pair.h)
+    s = internal::lanes_of<T>(0.0);
     for(std::size_t c = 0; c < D; ++c)
       s += a[c] * b[c];
-    return s;
   }
   template <class T>
-  static std::array<T, 3> cross(const std::array<T, 3>& a, const std::array<T, 3>& b)
+  SPRING_MOTION_LANES_STATIC std::array<T, 3> cross(const std::array<T, 3>& a, const std::array<T, 3>& b)
   {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
   }
 
   // |p_b - p_a|^2 of the simplex's edges, a < b
   template <int D, class T>
-  static std::array<T, D*(D + 1) / 2> squared_edges(const std::array<std::array<T, D>, D + 1>& p)
+  SPRING_MOTION_LANES_STATIC std::array<T, D*(D + 1) / 2> squared_edges(const std::array<std::array<T, D>, D + 1>& p)
   {
     std::array<T, D*(D + 1) / 2> ee;
     for(std::size_t a = 0, k = 0; a <= D; ++a)
       for(std::size_t b = a + 1; b <= D; ++b, ++k) {
         const auto e = sub<D>(p[b], p[a]);
-        ee[k] = dot<D>(e, e);
+        dot<D>(e, e, ee[k]);
       }
     return ee;
   }
 
   // N_i . N_j
   template <int D, class T>
-  static std::array<std::array<T, D + 1>, D + 1> gram(const std::array<std::array<T, D>, D + 1>& N)
+  SPRING_MOTION_LANES_STATIC std::array<std::array<T, D + 1>, D + 1> gram(const std::array<std::array<T, D>, D + 1>& N)
   {
     std::array<std::array<T, D + 1>, D + 1> G;
     for(std::size_t i = 0; i <= D; ++i)
-      for(std::size_t j = i; j <= D; ++j)
-        G[i][j] = G[j][i] = dot<D>(N[i], N[j]);
+      for(std::size_t j = i; j <= D; ++j) {
+        dot<D>(N[i], N[j], G[i][j]);
+        G[j][i] = G[i][j];
+      }
     return G;
   }
 
@@ -264,15 +304,15 @@ private:
 
   // The blocks v <= w (in the order of add_symmetric_blocks, each as its
   // upper triangle) of sum_i k_i c_iv c_iw n_i n_i^T, from knn[i] = k_i n_i
-  // n_i^T (upper triangle) and c(i, v), on lanes T (double, or two
-  // elements' Double_pair): the blocks v <= w < D from the springs; the
+  // n_i^T (upper triangle) and c[i][v], on lanes T (double, or two or four
+  // elements' lanes): the blocks v <= w < D from the springs; the
   // last vertex's from the others: each block row sums to zero (sum_v c_iv
   // = 0, the feet's coordinates summing to 1), so a rigid translation is in
   // the null space by construction, and the tetrahedron needs 6 of its 10
   // blocks.
-  template <int D, class T, class C>
-  static std::array<std::array<T, D*(D + 1) / 2>, (D + 1) * (D + 2) / 2> sum_blocks(
-      const std::array<std::array<T, D*(D + 1) / 2>, D + 1>& knn, C c)
+  template <int D, class T>
+  SPRING_MOTION_LANES_STATIC std::array<std::array<T, D*(D + 1) / 2>, (D + 1) * (D + 2) / 2> sum_blocks(
+      const std::array<std::array<T, D*(D + 1) / 2>, D + 1>& knn, const std::array<std::array<T, D + 1>, D + 1>& c)
   {
     constexpr int S = D * (D + 1) / 2;
     auto pair_of = [](int v, int w) { // v <= w
@@ -286,7 +326,7 @@ private:
         auto& b = B[std::size_t(pair_of(v, w))];
 #pragma GCC unroll 4
         for(int i = 0; i <= D; ++i) {
-          const T f = c(i, v) * c(i, w);
+          const T f = c[std::size_t(i)][std::size_t(v)] * c[std::size_t(i)][std::size_t(w)];
           for(int m = 0; m < S; ++m)
             b[std::size_t(m)] += f * knn[std::size_t(i)][std::size_t(m)];
         }
@@ -367,10 +407,7 @@ private:
         for(int q = r; q < D; ++q, ++m)
           knn[std::size_t(i)][std::size_t(m)] = g * n[std::size_t(r)] * n[std::size_t(q)];
     }
-    auto c = [&](int i, int v) {
-      return v == i ? 1.0 : G[std::size_t(i)][std::size_t(v)] * inverse_NN[std::size_t(i)];
-    };
-    const auto B = sum_blocks<D>(knn, c);
+    const auto B = sum_blocks<D>(knn, coefficients<D>(G, inverse_NN, 1.0));
     for(int v = 0, pair = 0; v <= D; ++v)
       for(int w = v; w <= D; ++w, ++pair)
         for(int r = 0, m = 0; r < D; ++r)
@@ -378,17 +415,31 @@ private:
             out(v, w, r, q, m, pair, B[std::size_t(pair)][std::size_t(m)]);
   }
 
-#if SPRING_MOTION_HAS_DOUBLE_PAIR
-  // blocks() on two simplices, one per lane, its path for capped-free
-  // stiffness only: every lane runs blocks()'s operations in its order
-  // (sums from 0 in the same order, the same products grouped alike), so
-  // each gets the same bits; the tests compare them. Whether both take that
-  // path is decided first, lane by lane, by blocks()'s own tests.
-  template <int D>
-  bool blocks_of_two(const std::array<std::array<double, D>, D + 1>& p0,
-                     const std::array<std::array<double, D>, D + 1>& p1, double* S0, double* S1) const
+  // c[i][v]: 1 for v = i, else N_i . N_v / |N_i|^2 (the negated foot
+  // coordinate b_v of altitude i)
+  template <int D, class T>
+  SPRING_MOTION_LANES_STATIC std::array<std::array<T, D + 1>, D + 1> coefficients(
+      const std::array<std::array<T, D + 1>, D + 1>& G, const std::array<T, D + 1>& inverse_NN, const T& one)
   {
-    using T = internal::Double_pair;
+    std::array<std::array<T, D + 1>, D + 1> c;
+    for(std::size_t i = 0; i <= D; ++i)
+      for(std::size_t v = 0; v <= D; ++v)
+        c[i][v] = v == i ? one : G[i][v] * inverse_NN[i];
+    return c;
+  }
+
+#if SPRING_MOTION_HAS_DOUBLE_PAIR
+  // blocks() on L simplices, one per lane of T (Double_pair, or Double_quad
+  // inlined into the four-lane entry point, which is compiled for AVX), its
+  // path for capped-free stiffness only: every lane runs blocks()'s
+  // operations in its order (sums from 0 in the same order, the same
+  // products grouped alike), so each gets the same bits; the tests compare
+  // them. Whether all take that path is decided first, lane by lane, by
+  // blocks()'s own tests.
+  template <int D, class T, std::size_t L>
+  SPRING_MOTION_LANES_INLINE bool blocks_in_lanes(
+      const std::array<const std::array<std::array<double, D>, D + 1>*, L>& q, const std::array<double*, L>& out) const
+  {
     constexpr int S = D * (D + 1) / 2;
     const int power = whole_power();
     if(power == 0)
@@ -396,17 +447,19 @@ private:
     std::array<std::array<T, D>, D + 1> p;
     for(std::size_t v = 0; v <= D; ++v)
       for(std::size_t c = 0; c < D; ++c)
-        p[v][c] = T{p0[v][c], p1[v][c]};
+        for(std::size_t l = 0; l < L; ++l)
+          p[v][c][l] = (*q[l])[v][c];
     for(const T ee : squared_edges<D>(p)) {
       const auto fits = ee >= internal::lanes_of<T>(min_squared_edge);
-      if(!(fits[0] && fits[1]))
-        return false;
+      for(std::size_t l = 0; l < L; ++l)
+        if(!fits[l])
+          return false;
     }
     const auto facets = facet_normals(p);
     const auto& N = facets.normal;
     const auto G = gram<D>(N);
     const T volume = internal::lane_abs(facets.measure);
-    for(int t = 0; t < 2; ++t) { // blocks()'s tests for its uncapped path, per lane
+    for(std::size_t t = 0; t < L; ++t) { // blocks()'s tests for its uncapped path, per lane
       const int vexp = internal::binary_exponent(volume[t]);
       if(!volume_uncapped(power, volume[t], vexp))
         return false;
@@ -417,8 +470,9 @@ private:
     const T one = internal::lanes_of<T>(1.0);
     const T inverse_power =
         one / (power == 1 ? volume : power == 2 ? volume * volume : volume * volume * volume);
-    if(!(inverse_power[0] > 0 && inverse_power[1] > 0))
-      return false;
+    for(std::size_t t = 0; t < L; ++t)
+      if(!(inverse_power[t] > 0))
+        return false;
     std::array<std::array<T, S>, D + 1> knn;
     std::array<T, D + 1> inverse_NN;
 #pragma GCC unroll 4
@@ -428,33 +482,27 @@ private:
       inverse_NN[i] = one / NN;
       T g = internal::lanes_of<T>(weight) * inverse_power;
       if(power != 2) {
-        const T len = {std::sqrt(NN[0]), std::sqrt(NN[1])};
+        T len;
+        for(std::size_t t = 0; t < L; ++t)
+          len[t] = std::sqrt(NN[t]);
         g = power == 1 ? g / len : g * len;
       }
       for(std::size_t r = 0, m = 0; r < D; ++r)
-        for(std::size_t q = r; q < D; ++q, ++m)
-          knn[i][m] = g * n[r] * n[q];
+        for(std::size_t c = r; c < D; ++c, ++m)
+          knn[i][m] = g * n[r] * n[c];
     }
-    auto c = [&](int i, int v) {
-      return v == i ? one : G[std::size_t(i)][std::size_t(v)] * inverse_NN[std::size_t(i)];
-    };
     constexpr int pairs = (D + 1) * (D + 2) / 2;
-    const auto B = sum_blocks<D>(knn, c);
+    const auto B = sum_blocks<D>(knn, coefficients<D>(G, inverse_NN, one));
 #pragma GCC unroll 10
     for(std::size_t u = 0; u < std::size_t(pairs); ++u)
-      for(std::size_t m = 0; m < std::size_t(S); ++m) {
-        S0[u * S + m] = B[u][m][0];
-        S1[u * S + m] = B[u][m][1];
-      }
+      for(std::size_t m = 0; m < std::size_t(S); ++m)
+        for(std::size_t l = 0; l < L; ++l)
+          out[l][u * S + m] = B[u][m][l];
     return true;
   }
-#else
-  template <int D>
-  bool blocks_of_two(const std::array<std::array<double, D>, D + 1>&, const std::array<std::array<double, D>, D + 1>&,
-                     double*, double*) const
-  {
-    return false;
-  }
+#endif
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+#pragma GCC diagnostic pop
 #endif
 
   // K += the whole matrix, each distinct value written to its places

@@ -135,6 +135,11 @@ struct Model_description
 /// bool symmetric_blocks_of_two(const std::array<std::array<double, D>, D + 1>& p,
 ///                              const std::array<std::array<double, D>, D + 1>& q, double* S, double* T) const;
 /// \endcode
+/// and of four (called only on processors with AVX, p[l]'s values in S[l]):
+/// \code
+/// bool symmetric_blocks_of_four(const std::array<const std::array<std::array<double, D>, D + 1>*, 4>& p,
+///                               const std::array<double*, 4>& S) const;
+/// \endcode
 /// An element model may also say how its edge springs act in that system,
 /// or that it has none (default `Edge_spring_form::per_coordinate`):
 /// \code
@@ -180,6 +185,15 @@ struct Has_symmetric_blocks_of_two<Model, D,
                                        std::declval<const std::array<std::array<double, D>, D + 1>&>(),
                                        std::declval<const std::array<std::array<double, D>, D + 1>&>(),
                                        std::declval<double*>(), std::declval<double*>()))>> : std::true_type {};
+
+template <class Model, int D, class = void>
+struct Has_symmetric_blocks_of_four : std::false_type {};
+template <class Model, int D>
+struct Has_symmetric_blocks_of_four<
+    Model, D,
+    std::void_t<decltype(std::declval<const Model&>().symmetric_blocks_of_four(
+        std::declval<const std::array<const std::array<std::array<double, D>, D + 1>*, 4>&>(),
+        std::declval<const std::array<double*, 4>&>()))>> : std::true_type {};
 
 template <class Model, class = void>
 struct Has_edge_spring_form : std::false_type {};

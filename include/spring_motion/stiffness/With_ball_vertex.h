@@ -70,6 +70,18 @@ struct With_ball_vertex
   {
     return ball_vertex.symmetric_blocks_of_two(p, q, S, T);
   }
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+  bool symmetric_blocks_of_four(const std::array<const std::array<std::array<double, 2>, 3>*, 4>& p,
+                                const std::array<double*, 4>& S) const
+  {
+    return ball_vertex.symmetric_blocks_of_four(p, S);
+  }
+  bool symmetric_blocks_of_four(const std::array<const std::array<std::array<double, 3>, 4>*, 4>& p,
+                                const std::array<double*, 4>& S) const
+  {
+    return ball_vertex.symmetric_blocks_of_four(p, S);
+  }
+#endif
 
   Model_description description(int dimension) const
   {

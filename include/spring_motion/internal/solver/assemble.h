@@ -415,6 +415,24 @@ bool add_element_matrices_of_two(const std::array<std::array<double, D>, D + 1>&
   return true;
 }
 
+// The same for four elements at once (Has_symmetric_blocks_of_four, where
+// four_lanes_available()), in the order of the pairs' form: the same sums in
+// the same order.
+template <int D, class Model>
+bool add_element_matrices_of_four(const std::array<std::array<std::array<double, D>, D + 1>, 4>& p,
+                                  const Model& model, const Index* element, const Index* to,
+                                  const Block_targets& blocks, long& first_bad, std::exception_ptr& error)
+{
+  std::array<Element_values<D, Model>, 4> K;
+  if(!model.symmetric_blocks_of_four({&p[0], &p[1], &p[2], &p[3]},
+                                     {K[0].data(), K[1].data(), K[2].data(), K[3].data()}))
+    return false;
+  for(std::size_t l = 0; l < 4; ++l)
+    if(finite_or_kept(K[l], element[l], first_bad, error))
+      scatter_element_values<D, Model>(K[l], to + l * (D + 1) * (D + 1), blocks);
+  return true;
+}
+
 // The element's blocks lie in the rows of its D + 1 vertices, which belong
 // to different colours and so to distant parts of the block array: the
 // scatter waited on cache misses for half its time (perf annotate, wing,
@@ -504,6 +522,7 @@ void add_element_matrices(const std::vector<typename Spring_network<D>::Point>& 
   // only cost instructions (the 2D paper mesh's stiffness, 0.85 MB of
   // blocks, took 7% longer with them)
   const bool prefetching = fs.bnd_block(Index(fs.bnd_vertices().size())) * D * D * sizeof(double) > prefetch_above;
+  const bool fours = four_lanes_available();
   constexpr long no_error = std::numeric_limits<long>::max();
   long first_bad = no_error; // the smallest network element whose matrix failed
   std::exception_ptr error;
@@ -514,12 +533,25 @@ void add_element_matrices(const std::vector<typename Spring_network<D>::Point>& 
       const long end = long(chunks[std::size_t(h) + 1]);
       for(long s = long(chunks[std::size_t(h)]); s < end;) {
         const Index* to = &dest[std::size_t(s) * (D + 1) * (D + 1)];
-        // the elements after this one (or pair) requested
-        const long ahead = !prefetching ? 0 : Has_symmetric_blocks_of_two<Model, D>::value ? 2 : 1;
+        // the elements after this one (or pair, or four) requested
+        const long ahead = !prefetching                                    ? 0
+                           : Has_symmetric_blocks_of_four<Model, D>::value && fours ? 4
+                           : Has_symmetric_blocks_of_two<Model, D>::value  ? 2
+                                                                           : 1;
         for(long a = s + prefetch_elements; a < std::min(end, s + prefetch_elements + ahead); ++a) {
           prefetch_destinations<D>(&dest[std::size_t(a) * (D + 1) * (D + 1)], blocks);
           prefetch_points<D>(vertices[std::size_t(a)], x);
         }
+        if constexpr(Has_symmetric_blocks_of_four<Model, D>::value)
+          if(fours && s + 3 < end &&
+             add_element_matrices_of_four<D>({element_points<D>(vertices, x, std::size_t(s)),
+                                              element_points<D>(vertices, x, std::size_t(s + 1)),
+                                              element_points<D>(vertices, x, std::size_t(s + 2)),
+                                              element_points<D>(vertices, x, std::size_t(s + 3))},
+                                             model, &elements[std::size_t(s)], to, blocks, first_bad, error)) {
+            s += 4;
+            continue;
+          }
         if constexpr(Has_symmetric_blocks_of_two<Model, D>::value)
           if(s + 1 < end &&
              add_element_matrices_of_two<D>(element_points<D>(vertices, x, std::size_t(s)),

@@ -650,6 +650,25 @@ TEST_CASE("ball-vertex: the distinct blocks the assembly reads are the element m
 
 namespace {
 
+template <int D>
+Simplex<D> random_simplex(std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Simplex<D> p;
+  for(auto& x : p)
+    for(double& c : x)
+      c = u(rng);
+  return p;
+}
+
+Ball_vertex_stiffness ball_vertex_of_power(double exponent)
+{
+  Ball_vertex_stiffness m;
+  m.exponent = exponent;
+  m.weight = 0.7;
+  return m;
+}
+
 // symmetric_blocks_of_two(p, q) against add_symmetric_blocks on each
 // (from zero): stored over a non-zero start; returns whether the pair form
 // was taken (false: S and T must be as they were).
@@ -693,26 +712,13 @@ TEST_CASE("ball-vertex: two simplices at once give each one's distinct blocks, b
           "[stiffness][ball_vertex]")
 {
   std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  auto random_simplex = [&](auto dimension) {
-    constexpr int D = decltype(dimension)::value;
-    Simplex<D> p;
-    for(auto& x : p)
-      for(double& c : x)
-        c = u(rng);
-    return p;
-  };
-  using Two = std::integral_constant<int, 2>;
-  using Three = std::integral_constant<int, 3>;
   for(double exponent : {1.0, 2.0, 3.0}) {
-    Ball_vertex_stiffness m;
-    m.exponent = exponent;
-    m.weight = 0.7;
+    const Ball_vertex_stiffness m = ball_vertex_of_power(exponent);
     const With_ball_vertex<Grid_scaled_stiffness> combined{{}, m};
     int taken = 0;
     for(int trial = 0; trial < 300; ++trial) {
-      taken += check_blocks_of_two<2>(m, random_simplex(Two{}), random_simplex(Two{}), rng);
-      taken += check_blocks_of_two<3>(m, random_simplex(Three{}), random_simplex(Three{}), rng);
+      taken += check_blocks_of_two<2>(m, random_simplex<2>(rng), random_simplex<2>(rng), rng);
+      taken += check_blocks_of_two<3>(m, random_simplex<3>(rng), random_simplex<3>(rng), rng);
     }
     CHECK(taken == 600); // ordinary simplices take the pair form
     CHECK(check_blocks_of_two<2>(combined, triangle, obtuse_triangle, rng));
@@ -778,27 +784,18 @@ TEST_CASE("ball-vertex: four simplices at once give each one's distinct blocks, 
     return;
   }
   std::mt19937 rng(13);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  auto random_simplices = [&](auto dimension) {
+  auto four_random = [&](auto dimension) {
     constexpr int D = decltype(dimension)::value;
-    std::array<Simplex<D>, 4> p;
-    for(auto& s : p)
-      for(auto& x : s)
-        for(double& c : x)
-          c = u(rng);
-    return p;
+    return std::array<Simplex<D>, 4>{random_simplex<D>(rng), random_simplex<D>(rng), random_simplex<D>(rng),
+                                     random_simplex<D>(rng)};
   };
-  using Two = std::integral_constant<int, 2>;
-  using Three = std::integral_constant<int, 3>;
   for(double exponent : {1.0, 2.0, 3.0}) {
-    Ball_vertex_stiffness m;
-    m.exponent = exponent;
-    m.weight = 0.7;
+    const Ball_vertex_stiffness m = ball_vertex_of_power(exponent);
     const With_ball_vertex<Grid_scaled_stiffness> combined{{}, m};
     int taken = 0;
     for(int trial = 0; trial < 200; ++trial) {
-      taken += check_blocks_of_four<2>(m, random_simplices(Two{}), rng);
-      taken += check_blocks_of_four<3>(m, random_simplices(Three{}), rng);
+      taken += check_blocks_of_four<2>(m, four_random(std::integral_constant<int, 2>{}), rng);
+      taken += check_blocks_of_four<3>(m, four_random(std::integral_constant<int, 3>{}), rng);
     }
     CHECK(taken == 400); // ordinary simplices take the four-lane form
     CHECK(check_blocks_of_four<2>(combined, {triangle, obtuse_triangle, obtuse_triangle, triangle}, rng));

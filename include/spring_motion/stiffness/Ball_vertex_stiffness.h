@@ -13,15 +13,6 @@
 #include <cmath>
 #include <cstddef>
 
-// Static helpers that take or return lane values, always inlined (see
-// double_pair.h: a four-lane value must not pass between functions compiled
-// for different instruction sets)
-#if defined(__GNUC__)
-#define SPRING_MOTION_LANES_STATIC static inline __attribute__((always_inline))
-#else
-#define SPRING_MOTION_LANES_STATIC static inline
-#endif
-
 namespace spring_motion {
 
 /// The altitude of a simplex from one vertex to the facet facing it: its

@@ -39,8 +39,10 @@
 
 #if defined(__GNUC__)
 #define SPRING_MOTION_LANES_INLINE inline __attribute__((always_inline))
+#define SPRING_MOTION_LANES_STATIC static inline __attribute__((always_inline)) // the same, for static members
 #else
 #define SPRING_MOTION_LANES_INLINE inline
+#define SPRING_MOTION_LANES_STATIC static inline
 #endif
 
 namespace spring_motion {

@@ -484,11 +484,19 @@ private:
     }
     constexpr int pairs = (D + 1) * (D + 2) / 2;
     const auto B = sum_blocks<D>(knn, coefficients<D>(G, inverse_NN, one));
-#pragma GCC unroll 10
-    for(std::size_t u = 0; u < std::size_t(pairs); ++u)
-      for(std::size_t m = 0; m < std::size_t(S); ++m)
-        for(std::size_t l = 0; l < L; ++l)
-          out[l][u * S + m] = B[u][m][l];
+    // value j of the flat list (u * S + m) of every lane
+    auto at = [&](std::size_t j) -> const T& { return B[j / S][j % S]; };
+    constexpr std::size_t n = std::size_t(pairs) * S;
+    std::size_t j = 0;
+#pragma GCC unroll 30
+    for(; j + L <= n; j += L)
+      if constexpr(L == 4)
+        internal::store_transposed(at(j), at(j + 1), at(j + 2), at(j + 3), out, j);
+      else
+        internal::store_transposed(at(j), at(j + 1), out, j);
+    for(; j < n; ++j) // 2D's last two of four lanes
+      for(std::size_t l = 0; l < L; ++l)
+        out[l][j] = at(j)[l];
     return true;
   }
 #endif

@@ -99,6 +99,49 @@ __attribute__((target("avx"))) inline Double_quad lanes_of<Double_quad>(double v
 }
 #endif
 
+// Lane l of the L vectors a, b, ... stored as L consecutive values at
+// out[l] + k: the lanes transposed in registers, one store per lane instead
+// of one per value. Stored value by value, an element's 60 blocks took 240
+// stores per four tetrahedra, and the 16-byte loads that read them next
+// waited for the stores to reach the cache (a load that spans two stores is
+// not forwarded from them).
+#if SPRING_MOTION_HAS_DOUBLE_PAIR
+#if defined(__clang__)
+#define SPRING_MOTION_SHUFFLE(a, b, M, ...) __builtin_shufflevector(a, b, __VA_ARGS__)
+#else
+#define SPRING_MOTION_SHUFFLE(a, b, M, ...) __builtin_shuffle(a, b, M{__VA_ARGS__})
+#endif
+
+SPRING_MOTION_LANES_INLINE void store_transposed(const Double_pair& a, const Double_pair& b,
+                                                 const std::array<double*, 2>& out, std::size_t k)
+{
+  const Double_pair first = SPRING_MOTION_SHUFFLE(a, b, Double_pair_mask, 0, 2);
+  const Double_pair second = SPRING_MOTION_SHUFFLE(a, b, Double_pair_mask, 1, 3);
+  typedef double Unaligned __attribute__((vector_size(16), aligned(8), may_alias));
+  *reinterpret_cast<Unaligned*>(out[0] + k) = first;
+  *reinterpret_cast<Unaligned*>(out[1] + k) = second;
+}
+#endif
+
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+// (always inlined into the four-lane kernel, so compiled for AVX with it)
+SPRING_MOTION_LANES_INLINE void store_transposed(const Double_quad& a, const Double_quad& b, const Double_quad& c,
+                                                 const Double_quad& d, const std::array<double*, 4>& out,
+                                                 std::size_t k)
+{
+  const Double_quad ab_even = SPRING_MOTION_SHUFFLE(a, b, Double_quad_mask, 0, 4, 2, 6); // a0 b0 a2 b2
+  const Double_quad ab_odd = SPRING_MOTION_SHUFFLE(a, b, Double_quad_mask, 1, 5, 3, 7);  // a1 b1 a3 b3
+  const Double_quad cd_even = SPRING_MOTION_SHUFFLE(c, d, Double_quad_mask, 0, 4, 2, 6);
+  const Double_quad cd_odd = SPRING_MOTION_SHUFFLE(c, d, Double_quad_mask, 1, 5, 3, 7);
+  // stored as they are, not through a copy (which went by the stack)
+  typedef double Unaligned __attribute__((vector_size(32), aligned(8), may_alias));
+  *reinterpret_cast<Unaligned*>(out[0] + k) = SPRING_MOTION_SHUFFLE(ab_even, cd_even, Double_quad_mask, 0, 1, 4, 5);
+  *reinterpret_cast<Unaligned*>(out[1] + k) = SPRING_MOTION_SHUFFLE(ab_odd, cd_odd, Double_quad_mask, 0, 1, 4, 5);
+  *reinterpret_cast<Unaligned*>(out[2] + k) = SPRING_MOTION_SHUFFLE(ab_even, cd_even, Double_quad_mask, 2, 3, 6, 7);
+  *reinterpret_cast<Unaligned*>(out[3] + k) = SPRING_MOTION_SHUFFLE(ab_odd, cd_odd, Double_quad_mask, 2, 3, 6, 7);
+}
+#endif
+
 /// kernel(c, out), a kernel written over the lane type, on two inputs at
 /// once, one per lane: `a` and `b` each point to C corners of N
 /// coordinates, which fill c corner by corner; out holds M values. Without

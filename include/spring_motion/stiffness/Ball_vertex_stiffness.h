@@ -494,7 +494,7 @@ private:
         internal::store_transposed(at(j), at(j + 1), at(j + 2), at(j + 3), out, j);
       else
         internal::store_transposed(at(j), at(j + 1), out, j);
-    for(; j < n; ++j) // 2D's last two of four lanes
+    for(; j < n; ++j) // in four lanes, the last 2 of 2D's 18 values
       for(std::size_t l = 0; l < L; ++l)
         out[l][j] = at(j)[l];
     return true;

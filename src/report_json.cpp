@@ -77,6 +77,7 @@ Json solver(const Solver_options& o)
   s["multigrid_coarsest_rows"] = o.multigrid_coarsest_rows;
   s["multigrid_max_direct_rows"] = o.multigrid_max_direct_rows;
   s["multigrid_coarse_interval"] = o.multigrid_coarse_interval;
+  s["multigrid_first_level_cycles"] = o.multigrid_first_level_cycles;
   return s;
 }
 

@@ -87,6 +87,7 @@ void check_report(const Json& j, const Deform_report& r)
   CHECK(s["multigrid_coarsest_rows"].get<std::size_t>() == o.multigrid_coarsest_rows);
   CHECK(s["multigrid_max_direct_rows"].get<std::size_t>() == o.multigrid_max_direct_rows);
   CHECK(s["multigrid_coarse_interval"].get<std::size_t>() == o.multigrid_coarse_interval);
+  CHECK(s["multigrid_first_level_cycles"].get<std::size_t>() == o.multigrid_first_level_cycles);
   REQUIRE(j["steps"].size() == r.steps.size());
   for(std::size_t i = 0; i < r.steps.size(); ++i) {
     const Json& js = j["steps"][i];
@@ -157,6 +158,7 @@ TEST_CASE("write_report_json: a completed pitch run reads back field by field", 
   options.solver.multigrid_coarsest_rows = 32;
   options.solver.multigrid_max_direct_rows = 128;
   options.solver.multigrid_coarse_interval = 3;
+  options.solver.multigrid_first_level_cycles = 2;
   const auto report = deform(cdt, hole_moves, Pitch_motion<2>(10.0, {0.0, 0.0}), Zeng_Ethier_semi_torsional_stiffness{},
                              options);
   REQUIRE(report.completed);
@@ -173,6 +175,7 @@ TEST_CASE("write_report_json: a completed pitch run reads back field by field", 
   CHECK(j["solver"]["multigrid_coarsest_rows"] == 32);
   CHECK(j["solver"]["multigrid_max_direct_rows"] == 128);
   CHECK(j["solver"]["multigrid_coarse_interval"] == 3);
+  CHECK(j["solver"]["multigrid_first_level_cycles"] == 2);
 }
 
 TEST_CASE("write_report_json: a stopped run reports its first invalid step, non-finite values as null",

@@ -124,6 +124,15 @@ struct Solver_options
   /// levels kept"). Scalar systems recompute theirs at every solve: their
   /// sums of spring weights cost little.
   std::size_t multigrid_coarse_interval = 4;
+  /// Block systems (element models): V-cycles per preconditioner application
+  /// on the multigrid's first coarse level, each on the residual the ones
+  /// before left (a symmetric polynomial in one cycle, so conjugate gradients
+  /// still see a symmetric preconditioner). The first coarse level carries
+  /// the aggregates' rigid motions, and one cycle leaves most of its error
+  /// there; more cycles cost little beside the fine level's sweeps and save
+  /// iterations (docs/performance.md, "The first coarse level solved more
+  /// closely"). Must be at least 1. Scalar systems take one cycle.
+  std::size_t multigrid_first_level_cycles = 3;
   /// OpenMP threads for stiffness, solve, checks and quality. 0: step by
   /// step OpenMP's default team or one thread, whichever measures cheaper
   /// (on a machine whose cores other processes use, the team's barriers wait

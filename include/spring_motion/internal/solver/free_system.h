@@ -999,6 +999,7 @@ private:
     const bool mg = options.preconditioner == Preconditioner::multigrid;
     multigrid_.parameters.correction = options.multigrid_correction; // used per cycle only
     rigid_.parameters.correction = options.multigrid_correction;
+    rigid_.first_level_cycles = options.multigrid_first_level_cycles; // used per cycle only
     if(mg) {
       Csr_view fine{order_.size(), row_offsets_.data(), col_.data(), nullptr, diagonal(), B};
       if(B && off_upper_)

@@ -71,6 +71,8 @@ public:
 
   /// the same parameters as Aggregation_multigrid's
   Multigrid_parameters parameters;
+  /// V-cycles per solve on level 0 (see `cycle`)
+  std::size_t first_level_cycles = 1;
 
   bool built() const { return built_; }
   std::size_t number_of_levels() const { return levels_.size(); }
@@ -157,8 +159,46 @@ public:
     }
   }
 
-  /// Solves approximately on level 0 (a V-cycle over the coarse levels).
-  void cycle(int threads = 1) { cycle(0, threads); }
+  /// Solves approximately on level 0: `first_level_cycles` V-cycles over
+  /// the coarse levels, each on the residual the ones before left.
+  void cycle(int threads = 1)
+  {
+    Level& L = levels_.front();
+    if(first_level_cycles <= 1 || levels_.size() < 2) {
+      cycle(0, threads);
+      return;
+    }
+    // z = sum over k of (I - B A)^k B r, B one V-cycle: a polynomial in B A
+    // whose product with a symmetric B is symmetric, so the whole stays a
+    // symmetric preconditioner for conjugate gradients. A is level 0's
+    // matrix as its sweeps read it.
+    rhs0_ = L.rhs;
+    sum_.assign(L.n, Coarse_row{});
+    const long n = long(L.n);
+    const int nt = team(0, threads);
+    for(std::size_t k = 0; k < first_level_cycles; ++k) {
+      cycle(0, threads);
+#pragma omp parallel for schedule(static) num_threads(nt)
+      for(long i = 0; i < n; ++i)
+        for(int c = 0; c < R; ++c)
+          sum_[std::size_t(i)][c] += L.z[std::size_t(i)][c];
+      if(k + 1 == first_level_cycles)
+        break;
+      // rhs0 - A sum: the diagonal block, then the row's entries
+      with_sweep_values(L, [&](const auto* v) {
+#pragma omp parallel for schedule(static) num_threads(nt)
+        for(long i = 0; i < n; ++i) {
+          Coarse_row r = rhs0_[std::size_t(i)];
+          subtract_block_product<R>(r, &L.diag[std::size_t(i) * RR], sum_[std::size_t(i)]);
+          for(Index q = L.offsets[std::size_t(i)]; q < L.offsets[std::size_t(i) + 1]; ++q)
+            subtract_block_product<R>(r, v + std::size_t(q) * RR, sum_[L.col[q]]);
+          L.rhs[std::size_t(i)] = r;
+        }
+      });
+    }
+    L.z.swap(sum_);
+    L.rhs.swap(rhs0_);
+  }
 
   /// (P z)_i: the displacement of fine row i by level 0's solution z.
   Row correction(std::size_t i) const
@@ -608,6 +648,7 @@ private:
   }
 
   std::vector<Level> levels_;
+  std::vector<Coarse_row> rhs0_, sum_; // level 0's right-hand side and sum of cycles (see `cycle`)
   std::vector<double> chol_;
   Dense_envelope envelope_;
   bool built_ = false;

@@ -79,9 +79,9 @@ def validate(path):
         if not isinstance(so.get(k), int) or isinstance(so.get(k), bool) or so[k] < 0:
             fail(path, f"solver.{k} should be a non-negative integer")
     # added within version 1: absent from older reports
-    for k in ("multigrid_coarse_interval", "multigrid_first_level_cycles"):
-        if k in so and (not isinstance(so[k], int) or isinstance(so[k], bool) or so[k] < 1):
-            fail(path, f"solver.{k} should be an integer >= 1")
+    for k, least in (("multigrid_coarse_interval", 1), ("multigrid_first_level_cycles", 0)):
+        if k in so and (not isinstance(so[k], int) or isinstance(so[k], bool) or so[k] < least):
+            fail(path, f"solver.{k} should be an integer >= {least}")
     for k in ("warm_start", "extrapolate"):
         if not isinstance(so.get(k), bool):
             fail(path, f"solver.{k} should be a boolean")

@@ -948,6 +948,61 @@ TEST_CASE("solvers: a block system's multigrid keeps its coarse levels between r
   CHECK_THROWS_WITH(run(o, none_loads, none_errors), Catch::Contains("multigrid coarse interval must be at least 1"));
 }
 
+// Solver_options::multigrid_first_level_cycles = 0 (the default) takes one
+// V-cycle on the block multigrid's first coarse level in 2D and three in 3D:
+// a one-step ball-vertex motion with the default must give, bit for bit, the
+// positions and iterations of the resolved count given explicitly, and not
+// those of the other count (so that the count is seen to matter).
+template <int D, class Roles>
+void check_first_level_cycles_by_dimension(const Spring_network<D>& net, const Roles& roles,
+                                           const Pitch_motion<D>& motion)
+{
+  auto run = [&](std::size_t cycles, std::size_t& iterations) {
+    Network_deformer<D> deformer(net, roles);
+    Deform_options options;
+    options.number_of_steps = 1;
+    options.solver.tolerance = 1e-9;
+    // small coarse levels, so that these meshes have levels below the first
+    options.solver.multigrid_coarsest_rows = 8;
+    options.solver.multigrid_max_direct_rows = 16;
+    options.solver.multigrid_first_level_cycles = cycles;
+    const auto report = deformer.run(motion, Ball_vertex_stiffness{2.0}, options);
+    REQUIRE(report.completed);
+    CHECK(report.converged);
+    iterations = report.steps[0].iterations;
+    return deformer.positions();
+  };
+  const std::size_t resolved = D == 3 ? 3 : 1, other = D == 3 ? 1 : 3;
+  std::size_t by_default = 0, explicit_count = 0, other_count = 0;
+  const auto a = run(0, by_default), b = run(resolved, explicit_count), c = run(other, other_count);
+  INFO(D << "D: iterations " << by_default << " (default), " << explicit_count << " (" << resolved << " cycles), "
+         << other_count << " (" << other << " cycles)");
+  CHECK(by_default == explicit_count);
+  CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+  CHECK((other_count != by_default || std::memcmp(a.data(), c.data(), a.size() * sizeof(a[0])) != 0));
+}
+
+TEST_CASE("solvers: the block multigrid cycles its first coarse level once in 2D and three times in 3D by default",
+          "[solver][block][multigrid]")
+{
+  SECTION("2D")
+  {
+    const Annulus a = annulus();
+    check_first_level_cycles_by_dimension<2>(a.net, a.roles, Pitch_motion<2>(5, {0, 0}));
+  }
+  SECTION("3D")
+  {
+    const auto mesh = naca0012_wing_mesh_3(coarse_wing_options());
+    const auto net = make_spring_network<3>(mesh.points, mesh.elements);
+    const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 3>& p) {
+                                      return is_on_naca0012_wing(p[0], p[1], p[2]);
+                                    }));
+    Pitch_motion<3> motion(5, {0.25, 0.0, 0.0});
+    motion.axis = {0, 0, 1};
+    check_first_level_cycles_by_dimension<3>(net, roles, motion);
+  }
+}
+
 // The preconditioner's sweeps (in single precision) and conjugate gradients'
 // products (in double) read a symmetric block from its upper triangle (6 of 9
 // values in 3D): the product must be that of the full block, bit for bit, so

@@ -131,8 +131,11 @@ struct Solver_options
   /// the aggregates' rigid motions, and one cycle leaves most of its error
   /// there; more cycles cost little beside the fine level's sweeps and save
   /// iterations (docs/performance.md, "The first coarse level solved more
-  /// closely"). Must be at least 1. Scalar systems take one cycle.
-  std::size_t multigrid_first_level_cycles = 3;
+  /// closely"). 0: by dimension, 3 in 3D and 1 in 2D, where the level is
+  /// smaller beside the fine one's sweeps and three cycles cost the 2D paper
+  /// mesh's `ball_vertex_p2` steps more time than they saved iterations.
+  /// Scalar systems take one cycle.
+  std::size_t multigrid_first_level_cycles = 0;
   /// OpenMP threads for stiffness, solve, checks and quality. 0: step by
   /// step OpenMP's default team or one thread, whichever measures cheaper
   /// (on a machine whose cores other processes use, the team's barriers wait

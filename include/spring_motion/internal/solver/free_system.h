@@ -38,6 +38,17 @@ constexpr std::size_t min_block_rows = 256;
 /// Elements per chunk of the block assembly (Free_system::element_chunks).
 constexpr std::size_t element_chunk = 512;
 
+/// V-cycles on the block multigrid's first coarse level per preconditioner
+/// application: Solver_options::multigrid_first_level_cycles, its 0 resolved
+/// by the dimension (see there).
+template <int D>
+std::size_t first_level_cycles(const Solver_options& o)
+{
+  if(o.multigrid_first_level_cycles > 0)
+    return o.multigrid_first_level_cycles;
+  return D == 3 ? 3 : 1;
+}
+
 /// An allocator whose elements are default-initialised: a vector of
 /// doubles resized with it leaves the new values unwritten (and fresh pages
 /// untouched) instead of zeroing them.
@@ -999,7 +1010,7 @@ private:
     const bool mg = options.preconditioner == Preconditioner::multigrid;
     multigrid_.parameters.correction = options.multigrid_correction; // used per cycle only
     rigid_.parameters.correction = options.multigrid_correction;
-    rigid_.first_level_cycles = options.multigrid_first_level_cycles; // used per cycle only
+    rigid_.first_level_cycles = first_level_cycles<D>(options); // used per cycle only
     if(mg) {
       Csr_view fine{order_.size(), row_offsets_.data(), col_.data(), nullptr, diagonal(), B};
       if(B && off_upper_)

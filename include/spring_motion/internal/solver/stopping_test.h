@@ -173,8 +173,6 @@ inline void check_options(const Solver_options& o)
                       "multigrid correction factor must lie in (0, 2), got " << o.multigrid_correction);
   SPRING_MOTION_CHECK(o.multigrid_coarse_interval >= 1,
                       "multigrid coarse interval must be at least 1 (solves), got " << o.multigrid_coarse_interval);
-  SPRING_MOTION_CHECK(o.multigrid_first_level_cycles >= 1,
-                      "multigrid first-level cycles must be at least 1, got " << o.multigrid_first_level_cycles);
 }
 
 } // namespace internal

@@ -170,6 +170,32 @@ Comparison compare_with_direct(const Spring_network<2>& net, const Model& model,
   return out;
 }
 
+// the coarse Mesh_3 wing with its surface moving, and a pitch about its
+// quarter chord
+struct Coarse_wing
+{
+  Spring_network<3> net;
+  std::vector<Vertex_role> roles;
+};
+
+Coarse_wing coarse_wing()
+{
+  const auto mesh = naca0012_wing_mesh_3(coarse_wing_options());
+  Coarse_wing w;
+  w.net = make_spring_network<3>(mesh.points, mesh.elements);
+  w.roles = assign_roles(w.net, moving_boundary_where([](const std::array<double, 3>& p) {
+                           return is_on_naca0012_wing(p[0], p[1], p[2]);
+                         }));
+  return w;
+}
+
+Pitch_motion<3> wing_pitch(double degrees)
+{
+  Pitch_motion<3> motion(degrees, {0.25, 0.0, 0.0});
+  motion.axis = {0, 0, 1};
+  return motion;
+}
+
 } // namespace
 
 TEST_CASE("solvers: SOR and conjugate gradients match a direct sparse solve", "[solver]")
@@ -271,13 +297,10 @@ TEST_CASE("solvers: SOR and conjugate gradients match a direct sparse solve", "[
 // Gauss-Seidel alone (no coarse levels) reach.
 TEST_CASE("solvers: 3D block systems whose multigrid has nearly free rotations converge", "[solver][block][multigrid]")
 {
-  const auto mesh = naca0012_wing_mesh_3(coarse_wing_options());
-  const auto net = make_spring_network<3>(mesh.points, mesh.elements);
-  const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 3>& p) {
-                                    return is_on_naca0012_wing(p[0], p[1], p[2]);
-                                  }));
-  Pitch_motion<3> motion(5, {0.25, 0.0, 0.0});
-  motion.axis = {0, 0, 1};
+  const Coarse_wing wing = coarse_wing();
+  const auto& net = wing.net;
+  const auto& roles = wing.roles;
+  const Pitch_motion<3> motion = wing_pitch(5);
   auto positions = [&](const auto& model, const Solver_options& solver) {
     Network_deformer<3> deformer(net, roles);
     Deform_options options;
@@ -992,14 +1015,8 @@ TEST_CASE("solvers: the block multigrid cycles its first coarse level once in 2D
   }
   SECTION("3D")
   {
-    const auto mesh = naca0012_wing_mesh_3(coarse_wing_options());
-    const auto net = make_spring_network<3>(mesh.points, mesh.elements);
-    const auto roles = assign_roles(net, moving_boundary_where([](const std::array<double, 3>& p) {
-                                      return is_on_naca0012_wing(p[0], p[1], p[2]);
-                                    }));
-    Pitch_motion<3> motion(5, {0.25, 0.0, 0.0});
-    motion.axis = {0, 0, 1};
-    check_first_level_cycles_by_dimension<3>(net, roles, motion);
+    const Coarse_wing wing = coarse_wing();
+    check_first_level_cycles_by_dimension<3>(wing.net, wing.roles, wing_pitch(5));
   }
 }
 

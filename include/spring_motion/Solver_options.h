@@ -129,12 +129,11 @@ struct Solver_options
   /// before left (a symmetric polynomial in one cycle, so conjugate gradients
   /// still see a symmetric preconditioner). The first coarse level carries
   /// the aggregates' rigid motions, and one cycle leaves most of its error
-  /// there; more cycles cost little beside the fine level's sweeps and save
-  /// iterations (docs/performance.md, "The first coarse level solved more
-  /// closely"). 0: by dimension, 3 in 3D and 1 in 2D, where the level is
-  /// smaller beside the fine one's sweeps and three cycles cost the 2D paper
-  /// mesh's `ball_vertex_p2` steps more time than they saved iterations.
-  /// Scalar systems take one cycle.
+  /// there; more cycles save iterations, each of which then costs more
+  /// (docs/performance.md, "The first coarse level solved more closely").
+  /// 0: by dimension, 3 in 3D and 1 in 2D, where three cycles cost the 2D
+  /// paper mesh's `ball_vertex_p2` steps more time than they saved
+  /// iterations. Scalar systems take one cycle.
   std::size_t multigrid_first_level_cycles = 0;
   /// OpenMP threads for stiffness, solve, checks and quality. 0: step by
   /// step OpenMP's default team or one thread, whichever measures cheaper

@@ -202,6 +202,105 @@ TEST_CASE("multigrid: every coarse matrix is the Galerkin product P^T A P of the
   }
 }
 
+namespace {
+
+// The block spring system of a 3D Kuhn grid (interior vertices free) with
+// the couplings of one vertex, row and column, scaled by 1e-3: it then has
+// no strong neighbour, and plain aggregation leaves it alone (a one-vertex
+// aggregate, which cannot carry a rotation). Still symmetric positive
+// definite: the diagonal is kept. Returns the weakened row.
+Index weaken_one_vertex(Laplacian& A)
+{
+  const Index v = Index(A.rows() / 2);
+  const int w = A.block ? 9 : 1;
+  for(std::size_t i = 0; i < A.rows(); ++i)
+    for(Index q = A.offsets[i]; q < A.offsets[i + 1]; ++q)
+      if(Index(i) == v || A.col[q] == v)
+        for(int c = 0; c < w; ++c)
+          A.values[std::size_t(q) * std::size_t(w) + std::size_t(c)] *= 1e-3;
+  return v;
+}
+
+Laplacian kuhn_grid_system(bool block)
+{
+  const auto mesh = kuhn_grid<3>(12);
+  const auto net = make_spring_network<3>(mesh.points, mesh.elements);
+  const auto roles = assign_roles(net, [&](const Vertex_info<3>& v) {
+    return v.on_boundary ? Vertex_role::fixed : Vertex_role::free;
+  });
+  return spring_laplacian(net, roles, block);
+}
+
+std::vector<std::size_t> aggregate_sizes(const internal::Aggregates& g)
+{
+  std::vector<std::size_t> size(g.count, 0);
+  for(const Index a : g.parent_of)
+    ++size[a];
+  return size;
+}
+
+} // namespace
+
+TEST_CASE("multigrid: with a minimum size, every smaller aggregate joins, whole, the neighbour it is most coupled to",
+          "[solver][multigrid]")
+{
+  Laplacian A = kuhn_grid_system(false);
+  const Index v = weaken_one_vertex(A);
+  const std::size_t n = A.rows();
+  std::vector<double> coupling(A.values.size());
+  for(std::size_t q = 0; q < coupling.size(); ++q)
+    coupling[q] = -A.values[q];
+  internal::Aggregates plain, joined;
+  REQUIRE(internal::aggregate_strong_neighbours(n, A.offsets.data(), A.col.data(), A.diag, coupling, 0.04, plain));
+  REQUIRE(internal::aggregate_strong_neighbours(n, A.offsets.data(), A.col.data(), A.diag, coupling, 0.04, joined,
+                                                3));
+  const auto plain_size = aggregate_sizes(plain), joined_size = aggregate_sizes(joined);
+  REQUIRE(plain_size[plain.parent_of[v]] == 1); // the case the minimum is for
+  for(const std::size_t s : joined_size)
+    CHECK(s >= 3);
+  // every plain aggregate of at least 3 keeps its members together and
+  // apart from the other such aggregates; each smaller one moves whole into
+  // the large one it is most coupled to (the largest entry from any member)
+  std::map<Index, Index> image; // plain aggregate -> joined aggregate
+  std::size_t small = 0;
+  for(std::size_t i = 0; i < n; ++i) {
+    const Index a = plain.parent_of[i];
+    const auto [it, fresh] = image.emplace(a, joined.parent_of[i]);
+    CHECK(it->second == joined.parent_of[i]);
+    if(fresh && plain_size[a] < 3)
+      ++small;
+  }
+  CHECK(joined.count == plain.count - small);
+  for(Index a = 0; a < Index(plain.count); ++a) {
+    if(plain_size[a] >= 3)
+      continue;
+    double best = 0;
+    Index to = Index(-1);
+    for(Index m = plain.member_offsets[a]; m < plain.member_offsets[a + 1]; ++m)
+      for(Index q = A.offsets[plain.members[m]]; q < A.offsets[plain.members[m] + 1]; ++q)
+        if(plain_size[plain.parent_of[A.col[q]]] >= 3 && coupling[q] > best) {
+          best = coupling[q];
+          to = plain.parent_of[A.col[q]];
+        }
+    REQUIRE(to != Index(-1));
+    CHECK(image[a] == image[to]);
+  }
+  // the members lists and the coarse pattern describe the joined aggregates
+  for(Index a = 0; a < Index(joined.count); ++a) {
+    CHECK(joined.member_offsets[a + 1] - joined.member_offsets[a] == Index(joined_size[a]));
+    for(Index m = joined.member_offsets[a]; m < joined.member_offsets[a + 1]; ++m)
+      CHECK(joined.parent_of[joined.members[m]] == a);
+  }
+  for(std::size_t i = 0; i < n; ++i)
+    for(Index q = A.offsets[i]; q < A.offsets[i + 1]; ++q) {
+      const Index a = joined.parent_of[i], b = joined.parent_of[A.col[q]];
+      if(a == b)
+        CHECK(joined.slot_of[q] == Index(-1));
+      else
+        CHECK(joined.col[joined.slot_of[q]] == b);
+    }
+}
+
 TEST_CASE("multigrid: the coarsest level is solved exactly", "[solver][multigrid]")
 {
   const Setup s = setup(false);
@@ -617,6 +716,29 @@ TEST_CASE("rigid-body multigrid: in 3D the Gauss-Seidel sweeps of the coarse lev
     const double difference = unscaled_against_scaled<3>(spring_laplacian(net, roles, true), free_points(net), 2);
     CHECK(difference > 0); // the unscaled system's sweeps did read floats
     CHECK(difference <= 1e-6);
+  }
+}
+
+// A one-vertex aggregate has a free rotation, a block too weak for its
+// couplings rounded to floats: were it kept, its level and the levels
+// above it would keep double precision.
+TEST_CASE("rigid-body multigrid: in 3D a vertex with no strong neighbour joins an aggregate, and every level reads "
+          "single precision",
+          "[solver][multigrid]")
+{
+  Laplacian A = kuhn_grid_system(true);
+  weaken_one_vertex(A);
+  const auto mesh = kuhn_grid<3>(12);
+  const auto net = make_spring_network<3>(mesh.points, mesh.elements);
+  const auto points = free_points(net);
+  REQUIRE(points.size() == A.rows());
+  Rigid_body_multigrid<3> mg;
+  mg.build(A.view(), points.data());
+  mg.load(A.view(), points.data());
+  REQUIRE(mg.number_of_levels() >= 2);
+  for(std::size_t l = 0; l < mg.number_of_levels(); ++l) {
+    INFO("level " << l << ", " << mg.rows(l) << " rows");
+    CHECK(mg.single_precision(l));
   }
 }
 

@@ -61,10 +61,12 @@ struct Aggregates
 /// has coupling[q] >= strength sqrt(scale[i] scale[j]). An unknown whose
 /// strong neighbours are all free seeds an aggregate with them; the rest join
 /// the aggregate they are most strongly coupled to, or group what is left.
+/// Last, an aggregate of fewer than `min_size` unknowns joins, whole, the
+/// aggregate of at least `min_size` it is most coupled to, if it touches one.
 /// False when that would remove less than 20% of the unknowns.
 inline bool aggregate_strong_neighbours(std::size_t n, const Index* offsets, const Index* col,
                                         const std::vector<double>& scale, const std::vector<double>& coupling,
-                                        double strength, Aggregates& g)
+                                        double strength, Aggregates& g, std::size_t min_size = 1)
 {
   constexpr Index none = std::numeric_limits<Index>::max();
   auto strong = [&](std::size_t i, Index q) {
@@ -113,6 +115,36 @@ inline bool aggregate_strong_neighbours(std::size_t n, const Index* offsets, con
       if(agg[col[q]] == none && strong(i, q))
         agg[col[q]] = count;
     ++count;
+  }
+  if(min_size > 1) {
+    std::vector<std::size_t> size(count, 0);
+    for(std::size_t i = 0; i < n; ++i)
+      ++size[agg[i]];
+    // each small aggregate's target from the sizes before any joins, so
+    // that no aggregate joins one that is itself leaving
+    std::vector<Index> target(count, none);
+    std::vector<double> best(count, 0.0);
+    for(std::size_t i = 0; i < n; ++i) {
+      const Index a = agg[i];
+      if(size[a] >= min_size)
+        continue;
+      for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
+        const Index b = agg[col[q]];
+        if(size[b] >= min_size && coupling[q] > best[a]) {
+          best[a] = coupling[q];
+          target[a] = b;
+        }
+      }
+    }
+    // the aggregates left keep their order
+    std::vector<Index> renumber(count, none);
+    Index kept = 0;
+    for(Index a = 0; a < count; ++a)
+      if(target[a] == none)
+        renumber[a] = kept++;
+    for(std::size_t i = 0; i < n; ++i)
+      agg[i] = renumber[target[agg[i]] == none ? agg[i] : target[agg[i]]];
+    count = kept;
   }
   if(std::size_t(count) * 5 > n * 4) // less than 20% fewer unknowns: not worth a level
     return false;

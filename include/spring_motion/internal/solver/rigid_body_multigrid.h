@@ -77,6 +77,8 @@ public:
   bool built() const { return built_; }
   std::size_t number_of_levels() const { return levels_.size(); }
   std::size_t rows(std::size_t level) const { return levels_[level].n; }
+  /// whether the sweeps of `level` read single precision (see load_level)
+  bool single_precision(std::size_t level) const { return !levels_[level].single.empty(); }
   /// how many times `load` has recomputed the levels
   std::size_t loads() const { return loads_; }
 
@@ -100,7 +102,10 @@ public:
             coupling[q] = block_norm<D>(whole_block<D>(fine.values, fine.upper, q, whole));
           }
         }
-        if(!aggregate_strong_neighbours(n, fine.offsets, fine.col, scale, coupling, parameters.strength, g))
+        // fewer than D vertices lie on one line and cannot feel a rotation
+        // about it (see rotation_springs): such aggregates join a neighbour
+        if(!aggregate_strong_neighbours(n, fine.offsets, fine.col, scale, coupling, parameters.strength, g,
+                                        std::size_t(D)))
           break;
       } else {
         const Level& f = levels_.back();
@@ -447,7 +452,11 @@ private:
 
   // An aggregate whose vertices lie on one line (a single vertex; two in 3D)
   // does not feel a rotation about that line: its rotations' diagonal is then
-  // singular, and their coupling to everything else zero. A tiny spring on
+  // singular, and their coupling to everything else zero. `build` joins the
+  // aggregates of fewer than D vertices to a neighbour, since such a block
+  // also keeps the whole level's sweeps in double precision (single_pivot);
+  // the springs are for what is left (collinear vertices, an aggregate
+  // with no neighbour to join). A tiny spring on
   // them (1e-13 of the largest diagonal entry) makes the block invertible
   // without changing any other unknown's solution. On the next level such an
   // aggregate's rotation is felt only through that spring, so an aggregate

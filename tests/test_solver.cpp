@@ -1083,6 +1083,57 @@ TEST_CASE("solvers: a symmetric block read from its upper triangle gives the ful
   CHECK(internal::upper_triangle_index<2>(1, 1) == 2);
 }
 
+// The multigrid's coarse sweeps read a single-precision copy of each block
+// stored by columns: its products must be those of the row-major block of
+// the same floats, bit for bit, and the copy must hold each value where the
+// by-columns product reads it (blocks not symmetric, so a transposition
+// shows), with 0 and `false` for a value a float cannot hold.
+template <int D>
+void check_block_product_by_columns(std::mt19937_64& random)
+{
+  const std::size_t n = 2000;
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-40, 40);
+  std::vector<double> m(n * D * D);
+  for(double& v : m)
+    v = std::ldexp(value(random), exponent(random));
+  std::vector<float> by_columns(m.size());
+  REQUIRE(internal::copy_to_single_by_columns<D>(m.data(), by_columns.data(), long(n), 2));
+  std::size_t placed = 0, same = 0;
+  for(std::size_t t = 0; t < n; ++t)
+    for(int r = 0; r < D; ++r)
+      for(int c = 0; c < D; ++c)
+        placed += by_columns[t * D * D + std::size_t(c * D + r)] == float(m[t * D * D + std::size_t(r * D + c)]);
+  std::vector<float> by_rows(m.size());
+  for(std::size_t k = 0; k < m.size(); ++k)
+    by_rows[k] = float(m[k]);
+  for(std::size_t t = 0; t < n; ++t) {
+    std::array<double, D> x, a, b;
+    for(int c = 0; c < D; ++c) {
+      x[std::size_t(c)] = std::ldexp(value(random), exponent(random));
+      a[std::size_t(c)] = b[std::size_t(c)] = value(random);
+    }
+    internal::subtract_block_product<D>(a, &by_rows[t * D * D], x);
+    internal::subtract_block_product_by_columns<D>(b, &by_columns[t * D * D], x);
+    same += std::memcmp(a.data(), b.data(), sizeof a) == 0;
+  }
+  CHECK(placed == n * D * D);
+  CHECK(same == n);
+  // out of a float's range: not converted, and reported
+  m[D * D + 1] = 1e40;
+  CHECK_FALSE(internal::copy_to_single_by_columns<D>(m.data(), by_columns.data(), long(n), 1));
+  CHECK(by_columns[D * D + D] == 0.0f);
+}
+
+TEST_CASE("solvers: a block of floats stored by columns gives the row-major block's product, bit for bit",
+          "[solver][block][multigrid]")
+{
+  std::mt19937_64 random(11);
+  check_block_product_by_columns<2>(random);
+  check_block_product_by_columns<3>(random);
+  check_block_product_by_columns<6>(random);
+}
+
 namespace {
 
 // A model's symmetric element blocks written out as whole element matrices

@@ -7,6 +7,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace spring_motion {
 namespace internal {
 
@@ -205,6 +209,65 @@ inline bool copy_to_single(const double* values, float* single, long n, int thre
     fits = fits && f;
   }
   return fits;
+}
+
+/// Each D x D block of `values` (row-major doubles) transposed into
+/// `single` as floats: block q's entry (r, c) at single[q D^2 + c D + r];
+/// 0 where a value does not fit (it is not converted: that traps under
+/// feenableexcept). Whether every value fit. On `threads` threads.
+template <int D>
+inline bool copy_to_single_by_columns(const double* values, float* single, long blocks, int threads)
+{
+  constexpr int DD = D * D;
+  bool fits = true;
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(&& : fits)
+  for(long q = 0; q < blocks; ++q) {
+    const double* m = values + std::size_t(q) * DD;
+    float* t = single + std::size_t(q) * DD;
+    bool block_fits = true;
+    for(int r = 0; r < D; ++r)
+      for(int c = 0; c < D; ++c) {
+        const double a = m[r * D + c];
+        const bool f = fits_single(a);
+        t[c * D + r] = float(f ? a : 0.0);
+        block_fits &= f;
+      }
+    fits = fits && block_fits;
+  }
+  return fits;
+}
+
+/// s -= M x for a D x D block of floats stored by columns (Mt[c D + r] =
+/// M(r, c), copy_to_single_by_columns). Each row subtracts its products in
+/// the order of its columns, as subtract_block_product does on the row-major
+/// block: the same bits. Stored by columns, two rows' sums share a register
+/// and each column is one vector product (by rows, inside the multigrid's
+/// sweeps, GCC converted and multiplied the floats one at a time).
+template <int D>
+inline void subtract_block_product_by_columns(std::array<double, D>& s, const float* Mt,
+                                              const std::array<double, D>& x)
+{
+#if defined(__SSE2__)
+  if constexpr(D % 2 == 0) {
+    __m128d t[D / 2];
+    for(int k = 0; k < D / 2; ++k)
+      t[k] = _mm_loadu_pd(&s[std::size_t(2 * k)]);
+    for(int c = 0; c < D; ++c) {
+      const __m128d y = _mm_set1_pd(x[std::size_t(c)]);
+      for(int k = 0; k < D / 2; ++k) {
+        // two floats (8 bytes) into the low half; __m64 may alias them
+        const __m128 m = _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(Mt + c * D + 2 * k));
+        t[k] = _mm_sub_pd(t[k], _mm_mul_pd(_mm_cvtps_pd(m), y));
+      }
+    }
+    for(int k = 0; k < D / 2; ++k)
+      _mm_storeu_pd(&s[std::size_t(2 * k)], t[k]);
+    return;
+  }
+#endif
+  for(int c = 0; c < D; ++c)
+    for(int r = 0; r < D; ++r)
+      s[std::size_t(r)] -= double(Mt[c * D + r]) * x[std::size_t(c)];
 }
 
 /// A max that a NaN sticks to, so a NaN can never pass for convergence:

@@ -48,7 +48,10 @@ namespace internal {
 /// copy of the off-diagonal blocks, made at `load` when every value fits a
 /// float (as the fine level's sweeps do): a 3D block of a coarse level holds
 /// 36 values, and level 0's sweeps moved about as many bytes as the fine
-/// level's. 2D levels keep double precision (see load_level). The residual
+/// level's. The copy stores each block by columns, so that two rows' sums
+/// take one vector operation per column, with the same bits as by rows
+/// (subtract_block_product_by_columns). 2D levels keep double precision
+/// (see load_level). The residual
 /// restricted after the forward sweep is formed from the entries the sweep
 /// read (those after each row), so each level's cycle stays the symmetric
 /// V-cycle of its matrix as the sweeps read it; the Galerkin products and
@@ -196,7 +199,7 @@ public:
           Coarse_row r = rhs0_[std::size_t(i)];
           subtract_block_product<R>(r, &L.diag[std::size_t(i) * RR], sum_[std::size_t(i)]);
           for(Index q = L.offsets[std::size_t(i)]; q < L.offsets[std::size_t(i) + 1]; ++q)
-            subtract_block_product<R>(r, v + std::size_t(q) * RR, sum_[L.col[q]]);
+            subtract_sweep_product(r, v + std::size_t(q) * RR, sum_[L.col[q]]);
           L.rhs[std::size_t(i)] = r;
         }
       });
@@ -280,7 +283,8 @@ private:
     std::vector<Index> slot_of;                 // finer off-diagonal entry -> entry here, or none
     std::vector<Index> offsets, col;            // this level's pattern
     std::vector<double> values, diag, inv_diag; // R x R per entry / row
-    std::vector<float> single;                  // values in single precision for the sweeps, or empty
+    std::vector<float> single;                  // values in single precision for the sweeps, each block
+                                                // by columns (subtract_sweep_product), or empty
     std::vector<Coarse_row> rhs, z;
     std::vector<Row> centre;                    // per unknown
     std::vector<Row> offset;                    // per finer unknown: its position minus its aggregate's centre
@@ -406,7 +410,8 @@ private:
       // out of a float's range is not converted (it traps under
       // feenableexcept), and then the copy is dropped
       L.single.resize(L.values.size());
-      fits = copy_to_single(L.values.data(), L.single.data(), long(L.values.size()), team(l, threads));
+      fits = copy_to_single_by_columns<R>(L.values.data(), L.single.data(), long(L.values.size() / RR),
+                                          team(l, threads));
     }
     if(!fits)
       L.single.clear();
@@ -549,6 +554,17 @@ private:
     dense_cholesky_solve<1>(chol_, L.n * R, envelope_, L.rhs[0].data(), L.z[0].data());
   }
 
+  // s -= M x for an off-diagonal block as the sweeps read it: doubles by
+  // rows, or the single-precision copy by columns (the same bits)
+  static void subtract_sweep_product(Coarse_row& s, const double* M, const Coarse_row& x)
+  {
+    subtract_block_product<R>(s, M, x);
+  }
+  static void subtract_sweep_product(Coarse_row& s, const float* Mt, const Coarse_row& x)
+  {
+    subtract_block_product_by_columns<R>(s, Mt, x);
+  }
+
   // calls f with the off-diagonal values the level's sweeps read: the
   // single-precision copy where load_level made one, else the doubles
   template <class F>
@@ -567,7 +583,7 @@ private:
   {
     Coarse_row s = L.rhs[i];
     for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
-      subtract_block_product<R>(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
+      subtract_sweep_product(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
     return s;
   }
 
@@ -582,7 +598,7 @@ private:
       Coarse_row s = L.rhs[i];
       for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
         if(L.col[q] < i)
-          subtract_block_product<R>(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
+          subtract_sweep_product(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
       L.z[i] = block_product<R>(&L.inv_diag[i * RR], s);
     }
   }
@@ -597,7 +613,7 @@ private:
     Coarse_row s{};
     for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
       if(L.col[q] > i)
-        subtract_block_product<R>(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
+        subtract_sweep_product(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
     return s;
   }
 

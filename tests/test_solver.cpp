@@ -1134,6 +1134,44 @@ TEST_CASE("solvers: a block of floats stored by columns gives the row-major bloc
   check_block_product_by_columns<6>(random);
 }
 
+// The sweeps' single-precision copy: each value that a float holds to 24
+// bits (0, or a magnitude in [1e-30, 1e30]) converted, sign of zero
+// included; every other value (too small, too large, infinite, NaN) 0, and
+// the answer false; for odd and even lengths, on one and two threads.
+TEST_CASE("solvers: the single-precision copy converts the values a float holds and zeroes the others",
+          "[solver][block]")
+{
+  const double specials[] = {0.0,   -0.0,   1e-30, -1e-30, 0.99e-30, 1e30, -1e30, 1.01e30, 1e40, -1e-300,
+                             1e250, 1.0 / 3.0, -2.5, std::numeric_limits<double>::infinity(),
+                             -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()};
+  std::mt19937_64 random(13);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-110, 110);
+  for(long n : {0L, 1L, 2L, 7L, 1000L, 1001L})
+    for(bool with_specials : {false, true})
+      for(int threads : {1, 2}) {
+        std::vector<double> v(static_cast<std::size_t>(n));
+        for(double& a : v)
+          a = std::ldexp(value(random), exponent(random) / 4); // within a float's range
+        if(with_specials)
+          for(std::size_t k = 0; k < v.size(); ++k)
+            if(random() % 3 == 0)
+              v[k] = specials[random() % (sizeof specials / sizeof specials[0])];
+        bool expected_fits = true;
+        std::vector<float> expected(v.size()), single(v.size(), 7.0f);
+        for(std::size_t k = 0; k < v.size(); ++k) {
+          const double a = std::abs(v[k]);
+          const bool f = a == 0 || (a >= 1e-30 && a <= 1e30);
+          expected[k] = f ? float(v[k]) : 0.0f;
+          expected_fits = expected_fits && f;
+        }
+        CHECK(internal::copy_to_single(v.data(), single.data(), n, threads) == expected_fits);
+        CHECK(std::memcmp(single.data(), expected.data(), single.size() * sizeof(float)) == 0);
+        if(!with_specials)
+          CHECK(expected_fits);
+      }
+}
+
 namespace {
 
 // A model's symmetric element blocks written out as whole element matrices

@@ -198,11 +198,35 @@ inline bool fits_single(double a)
 /// single[k] = values[k] as a float for k < n, on `threads` threads; 0 where
 /// a value does not fit (it is not converted: that traps under
 /// feenableexcept). Whether every value fit.
+///
+/// Two values at a time and without branches where SSE2 is: one at a time,
+/// GCC branched on each of fits_single's tests, and on the 2D paper mesh,
+/// whose rows stay in the caches, the copy took 5% of a ball-vertex run
+/// (perf), most of it at those branches. A value that does not fit is
+/// masked to +0 before the conversion, as the scalar form writes 0; the
+/// comparisons are those of fits_single, so the same floats and the same
+/// answer.
 inline bool copy_to_single(const double* values, float* single, long n, int threads)
 {
   bool fits = true;
+  long k0 = 0;
+#if defined(__SSE2__)
+  const long pairs = n / 2;
 #pragma omp parallel for schedule(static) num_threads(threads) reduction(&& : fits)
-  for(long k = 0; k < n; ++k) {
+  for(long p = 0; p < pairs; ++p) {
+    const __m128d v = _mm_loadu_pd(values + 2 * p);
+    const __m128d a = _mm_andnot_pd(_mm_set1_pd(-0.0), v);
+    const __m128d ok = _mm_or_pd(_mm_cmpeq_pd(a, _mm_setzero_pd()),
+                                 _mm_and_pd(_mm_cmpge_pd(a, _mm_set1_pd(1e-30)), _mm_cmple_pd(a, _mm_set1_pd(1e30))));
+    // two floats (8 bytes) from the low half; __m64 may alias them
+    _mm_storel_pi(reinterpret_cast<__m64*>(single + 2 * p), _mm_cvtpd_ps(_mm_and_pd(v, ok)));
+    fits = fits && _mm_movemask_pd(ok) == 3;
+  }
+  k0 = 2 * pairs;
+#else
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(&& : fits)
+#endif
+  for(long k = k0; k < n; ++k) {
     const double v = values[k];
     const bool f = fits_single(v);
     single[k] = float(f ? v : 0.0);

@@ -1166,7 +1166,8 @@ TEST_CASE("solvers: the single-precision copy converts the values a float holds 
           expected_fits = expected_fits && f;
         }
         CHECK(internal::copy_to_single(v.data(), single.data(), n, threads) == expected_fits);
-        CHECK(std::memcmp(single.data(), expected.data(), single.size() * sizeof(float)) == 0);
+        // bit for bit, the sign of zero included (memcmp takes no null pointer: n = 0 is left out)
+        CHECK((single.empty() || std::memcmp(single.data(), expected.data(), single.size() * sizeof(float)) == 0));
         if(!with_specials)
           CHECK(expected_fits);
       }

@@ -186,13 +186,18 @@ inline std::array<double, D> symmetric_block_product(const double* U, const std:
   return y;
 }
 
-/// Whether a float keeps 24 bits of value a: 0, or a magnitude in [1e-30,
-/// 1e30] (capped stiffness reaches 1e250, and converting such a value traps
-/// under feenableexcept).
+/// The magnitudes a float keeps to 24 bits, besides 0: capped stiffness
+/// reaches 1e250, and converting such a value traps under feenableexcept.
+/// fits_single and copy_to_single's vector form both read these two.
+constexpr double single_low = 1e-30;
+constexpr double single_high = 1e30;
+
+/// Whether a float keeps 24 bits of value a: 0, or a magnitude in
+/// [single_low, single_high].
 inline bool fits_single(double a)
 {
   a = std::abs(a);
-  return a == 0 || (a >= 1e-30 && a <= 1e30);
+  return a == 0 || (a >= single_low && a <= single_high);
 }
 
 /// single[k] = values[k] as a float for k < n, on `threads` threads; 0 where
@@ -217,7 +222,8 @@ inline bool copy_to_single(const double* values, float* single, long n, int thre
     const __m128d v = _mm_loadu_pd(values + 2 * p);
     const __m128d a = _mm_andnot_pd(_mm_set1_pd(-0.0), v);
     const __m128d ok = _mm_or_pd(_mm_cmpeq_pd(a, _mm_setzero_pd()),
-                                 _mm_and_pd(_mm_cmpge_pd(a, _mm_set1_pd(1e-30)), _mm_cmple_pd(a, _mm_set1_pd(1e30))));
+                                 _mm_and_pd(_mm_cmpge_pd(a, _mm_set1_pd(single_low)),
+                                            _mm_cmple_pd(a, _mm_set1_pd(single_high))));
     // two floats (8 bytes) from the low half; __m64 may alias them
     _mm_storel_pi(reinterpret_cast<__m64*>(single + 2 * p), _mm_cvtpd_ps(_mm_and_pd(v, ok)));
     fits = fits && _mm_movemask_pd(ok) == 3;

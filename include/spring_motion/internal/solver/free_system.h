@@ -1102,7 +1102,7 @@ private:
   // bits.
   //
   // The preconditioner's sweeps read a single-precision copy (single_off_),
-  // made when every entry is 0 or of magnitude in [1e-30, 1e30], where a
+  // made when every entry is 0 or of magnitude in [single_low, single_high], where a
   // float keeps 24 bits of it (capped stiffness reaches 1e250; otherwise the
   // sweeps read the doubles, single_fits_ false); of the upper triangles too
   // when the blocks are symmetric (product_upper_), with the same products in

@@ -121,13 +121,23 @@ public:
     const double longest = net_.longest_initial_edge;
     measure_exponent_ = longest > 0 && std::isfinite(longest) ? -std::ilogb(longest) : 0;
     measure_scale_ = std::abs(measure_exponent_) <= 1000 ? std::ldexp(1.0, measure_exponent_) : 0.0;
-    initial_measure_.resize(net_.number_of_elements());
     touches_moving_.assign(net_.number_of_elements(), 0);
-    for(std::size_t t = 0; t < net_.number_of_elements(); ++t) {
-      initial_measure_[t] = scaled_measure(positions_, t);
+    for(std::size_t t = 0; t < net_.number_of_elements(); ++t)
       for(Index v : net_.elements[t])
         if(roles_[v] == Vertex_role::moving)
           touches_moving_[t] = 1;
+    // the same two in the elements' spatial traversal, where the per-step
+    // quality reads them
+    const internal::Angle_slots& slots = internal::angle_slots(net_);
+    const std::size_t m = slots.ordered_elements.size() / (D + 1);
+    initial_measure_.resize(m);
+    traversal_moving_.assign(m, 0);
+    for(std::size_t i = 0; i < m; ++i) {
+      initial_measure_[i] = scaled_measure(traversal_points(positions_, i));
+      for(int k = 0; k <= D; ++k)
+        if(roles_[slots.traversal_vertices[slots.ordered_elements[i * (D + 1) + std::size_t(k)]]] ==
+           Vertex_role::moving)
+          traversal_moving_[i] = 1;
     }
     for(auto& v : increments_)
       v.assign(n, Point{});
@@ -338,12 +348,12 @@ public:
   /// pass over the elements
   std::pair<double, double> size_ratio_range(int threads = 0) const
   {
-    const long m = long(net_.number_of_elements());
+    const long m = long(initial_measure_.size());
     double mn = std::numeric_limits<double>::infinity(), mx = -mn;
 #pragma omp parallel for reduction(min : mn) reduction(max : mx) schedule(static) \
     num_threads(internal::thread_count(threads, std::size_t(m)))
     for(long t = 0; t < m; ++t) {
-      const double r = scaled_measure(positions_, std::size_t(t)) / initial_measure_[std::size_t(t)];
+      const double r = scaled_measure(traversal_points(positions_, std::size_t(t))) / initial_measure_[std::size_t(t)];
       mn = std::min(mn, r);
       mx = std::max(mx, r);
     }
@@ -361,9 +371,15 @@ private:
   // nearest 1/longest edge: the scaling is exact, so every ratio of measures
   // is bitwise unchanged, and a tiny mesh's measures do not underflow to 0
   // (which made min_size_ratio 0/0).
-  double scaled_measure(const std::vector<Point>& x, std::size_t t) const
+  // the corners of the traversal's i-th element (Angle_slots), read from x
+  // in network order
+  std::array<Point, D + 1> traversal_points(const std::vector<Point>& x, std::size_t i) const
   {
-    return scaled_measure(internal::element_points<D>(net_.elements, x, t));
+    const internal::Angle_slots& slots = internal::angle_slots(net_);
+    std::array<Point, D + 1> p;
+    for(std::size_t k = 0; k <= D; ++k)
+      p[k] = x[slots.traversal_vertices[slots.ordered_elements[i * (D + 1) + k]]];
+    return p;
   }
   double scaled_measure(std::array<Point, D + 1> p) const
   {
@@ -386,9 +402,17 @@ private:
 
   // The step's extremes in one pass over the elements, nothing stored per
   // element: the same numbers as element_skewness() and size_ratio_range().
-  void step_quality(Step_report& s, int threads) const
+  // In the elements' spatial traversal, from a copy of the positions in its
+  // order (the exact check's, traversal_check.h): in the file's order the
+  // gathers of the wing's corners missed the caches, a fifth of this
+  // pass's samples (perf). Each extreme is a minimum or maximum over the
+  // elements, so the order does not change it.
+  void step_quality(Step_report& s, int threads)
   {
-    const long m = long(net_.number_of_elements());
+    const internal::Angle_slots& slots = internal::angle_slots(net_);
+    auto& xt = stiffness_scratch_.points;
+    internal::copy_in_traversal_order<D>(slots, positions_, xt, threads);
+    const long m = long(initial_measure_.size());
     internal::Quality_extremes all, moving;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
 #pragma omp parallel num_threads(internal::thread_count(threads, std::size_t(m)))
@@ -397,12 +421,12 @@ private:
       double my_lo = lo, my_hi = hi;
 #pragma omp for schedule(static) nowait
       for(long t = 0; t < m; ++t) {
-        const auto p = internal::element_points<D>(net_.elements, positions_, std::size_t(t));
+        const auto p = internal::traversal_element_points<D>(slots, xt, std::size_t(t));
         // Most elements can hold neither an extreme angle (3D: passed over
         // by a cheap bound) nor an extreme size ratio: a measure farther than
         // 1e-12 (relative) inside the extremes so far times the initial one
         // gives a quotient inside them too, and is not divided.
-        if(touches_moving_[std::size_t(t)]) {
+        if(traversal_moving_[std::size_t(t)]) {
           const auto e = internal::element_extreme_angles<D>(p);
           my_all.add(e);
           my_moving.add(e);
@@ -700,7 +724,10 @@ private:
   // the initial orientations in the elements' spatial traversal (the check's
   // order; made at the first check)
   std::vector<signed char> traversal_sign_;
+  // per element in the spatial traversal (Angle_slots): its initial
+  // scaled_measure(), and whether it touches a moving vertex
   std::vector<double> initial_measure_;
+  std::vector<char> traversal_moving_;
   // scaled_measure(): coordinates times 2^measure_exponent_ (measure_scale_ when that is normal, else 0)
   int measure_exponent_ = 0;
   double measure_scale_ = 0;

@@ -426,6 +426,9 @@ public:
                                                 << "): the model gave k = 0 on all its edges");
   }
 
+  // elements ahead whose edges element_destinations requests
+  static constexpr std::size_t destination_prefetch = 8;
+
   // rows ahead that load_scalar prefetches its vertex's springs
   static constexpr long prefetch_rows = 8;
 
@@ -733,10 +736,17 @@ private:
     }
     element_dest_.resize(ne * (D + 1) * (D + 1));
     Index* to = element_dest_.data();
-    for(const Index t : elements_) {
+    for(std::size_t s = 0; s < ne; ++s) {
       // every element, those with no free vertex too: their matrices go
-      // nowhere, but computing them checks the model everywhere, every step
-      const auto& el = net.elements[t];
+      // nowhere, but computing them checks the model everywhere, every step.
+      // The vertices from their copy in this order; the edges of an element
+      // a few places ahead requested (in network order they lie far apart).
+#if defined(__GNUC__)
+      if(s + destination_prefetch < ne)
+        __builtin_prefetch(&net.element_edges[std::size_t(elements_[s + destination_prefetch]) * Tables::edges]);
+#endif
+      const Index t = elements_[s];
+      const auto& el = element_vertices_[s];
       std::array<Index, D + 1> row;
       for(int a = 0; a <= D; ++a)
         row[std::size_t(a)] = row_of[el[std::size_t(a)]];

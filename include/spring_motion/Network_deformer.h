@@ -121,13 +121,9 @@ public:
     const double longest = net_.longest_initial_edge;
     measure_exponent_ = longest > 0 && std::isfinite(longest) ? -std::ilogb(longest) : 0;
     measure_scale_ = std::abs(measure_exponent_) <= 1000 ? std::ldexp(1.0, measure_exponent_) : 0.0;
-    touches_moving_.assign(net_.number_of_elements(), 0);
-    for(std::size_t t = 0; t < net_.number_of_elements(); ++t)
-      for(Index v : net_.elements[t])
-        if(roles_[v] == Vertex_role::moving)
-          touches_moving_[t] = 1;
-    // the same two in the elements' spatial traversal, where the per-step
-    // quality reads them
+    // each element's initial measure and whether it touches a moving
+    // vertex, in the elements' spatial traversal, where the per-step
+    // quality reads them (touches_moving() is worked out where asked)
     const internal::Angle_slots& slots = internal::angle_slots(net_);
     const std::size_t m = slots.ordered_elements.size() / (D + 1);
     initial_measure_.resize(m);
@@ -151,7 +147,13 @@ public:
   const std::vector<Point>& positions() const { return positions_; }
   const Orientation_record& orientation_record() const { return record_; }
   /// elements with at least one moving vertex
-  bool touches_moving(std::size_t element) const { return touches_moving_[element] != 0; }
+  bool touches_moving(std::size_t element) const
+  {
+    for(Index v : net_.elements[element])
+      if(roles_[v] == Vertex_role::moving)
+        return true;
+    return false;
+  }
   std::size_t number_of_moving_vertices() const { return moving_.size(); }
   /// fixed vertices, sliding ones whose planes pin them included
   std::size_t number_of_fixed_vertices() const { return fixed_.size(); }
@@ -271,7 +273,7 @@ public:
     rep.element_skewness = element_skewness(net_, positions_, quality_threads(options), &min_angle);
     rep.quality_all = skewness_histogram(rep.element_skewness, [](std::size_t) { return true; });
     rep.quality_moving =
-        skewness_histogram(rep.element_skewness, [&](std::size_t t) { return touches_moving_[t] != 0; });
+        skewness_histogram(rep.element_skewness, [&](std::size_t t) { return touches_moving(t); });
     smallest_angles(min_angle, rep.min_angle_deg_moving, rep.min_angle_deg_all);
     std::tie(rep.min_size_ratio, rep.max_size_ratio) = size_ratio_range(quality_threads(options));
     rep.seconds_total = seconds_since(start);
@@ -395,7 +397,7 @@ private:
     moving = all = 180;
     for(std::size_t t = 0; t < min_angle.size(); ++t) {
       all = std::min(all, min_angle[t]);
-      if(touches_moving_[t])
+      if(touches_moving(t))
         moving = std::min(moving, min_angle[t]);
     }
   }
@@ -731,7 +733,6 @@ private:
   // scaled_measure(): coordinates times 2^measure_exponent_ (measure_scale_ when that is normal, else 0)
   int measure_exponent_ = 0;
   double measure_scale_ = 0;
-  std::vector<char> touches_moving_;
   std::vector<double> stiffness_;
   internal::Stiffness_scratch<D> stiffness_scratch_;
   // the solver state: ordering, pattern and multigrid aggregates, rebuilt

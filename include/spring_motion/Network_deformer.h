@@ -369,10 +369,6 @@ private:
     return std::chrono::duration<double>(Clock::now() - t0).count();
   }
 
-  // The element's signed measure with coordinates scaled by the power of two
-  // nearest 1/longest edge: the scaling is exact, so every ratio of measures
-  // is bitwise unchanged, and a tiny mesh's measures do not underflow to 0
-  // (which made min_size_ratio 0/0).
   // the corners of the traversal's i-th element (Angle_slots), read from x
   // in network order
   std::array<Point, D + 1> traversal_points(const std::vector<Point>& x, std::size_t i) const
@@ -383,6 +379,11 @@ private:
       p[k] = x[slots.traversal_vertices[slots.ordered_elements[i * (D + 1) + k]]];
     return p;
   }
+
+  // The element's signed measure with coordinates scaled by the power of two
+  // nearest 1/longest edge: the scaling is exact, so every ratio of measures
+  // is bitwise unchanged, and a tiny mesh's measures do not underflow to 0
+  // (which made min_size_ratio 0/0).
   double scaled_measure(std::array<Point, D + 1> p) const
   {
     for(auto& q : p)

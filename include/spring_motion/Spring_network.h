@@ -281,12 +281,7 @@ std::vector<std::array<Index, D>> boundary_facets(const Spring_network<D>& net)
         facets.push_back(net.edges[e]);
     }
   } else {
-    // the local edge between two local vertices
-    std::array<std::array<std::size_t, 4>, 4> local_edge{};
-    for(std::size_t j = 0; j < E; ++j) {
-      local_edge[std::size_t(Tables::edge[j][0])][std::size_t(Tables::edge[j][1])] = j;
-      local_edge[std::size_t(Tables::edge[j][1])][std::size_t(Tables::edge[j][0])] = j;
-    }
+    constexpr auto local_edge = internal::local_edges<D>();
     // facet k of element t: its smallest vertex and the edge of the other two
     const auto facet = [&](std::size_t t, std::size_t k) {
       std::array<int, 3> l = Tables::facet[k];
@@ -295,7 +290,7 @@ std::vector<std::array<Index, D>> boundary_facets(const Spring_network<D>& net)
         if(v[std::size_t(l[std::size_t(i)])] < v[std::size_t(l[0])])
           std::swap(l[0], l[std::size_t(i)]);
       return std::pair<Index, Index>{
-          v[std::size_t(l[0])], net.element_edges[t * E + local_edge[std::size_t(l[1])][std::size_t(l[2])]]};
+          v[std::size_t(l[0])], net.element_edges[t * E + std::size_t(local_edge[std::size_t(l[1])][std::size_t(l[2])])]};
     };
     // the facets' edges, grouped by their smallest vertex a: [start[a], start[a + 1])
     std::vector<Index> start, edge_of;

@@ -729,11 +729,7 @@ private:
         edge_block[bnd_edge_[q]][side(bnd_edge_[q])] = Index(bnd_block(q));
     }
     using Tables = Simplex_tables<D>;
-    std::array<std::array<int, D + 1>, D + 1> local_edge{};
-    for(int j = 0; j < Tables::edges; ++j) {
-      local_edge[std::size_t(Tables::edge[std::size_t(j)][0])][std::size_t(Tables::edge[std::size_t(j)][1])] = j;
-      local_edge[std::size_t(Tables::edge[std::size_t(j)][1])][std::size_t(Tables::edge[std::size_t(j)][0])] = j;
-    }
+    constexpr auto local_edge = local_edges<D>();
     element_dest_.resize(ne * (D + 1) * (D + 1));
     Index* to = element_dest_.data();
     for(std::size_t s = 0; s < ne; ++s) {

@@ -209,3 +209,84 @@ TEST_CASE("deform 3D: the hole of the Mesh_3 box turns by 20 degrees with every 
     }
   }
 }
+
+// A Kuhn box (six tetrahedra a cube, no jitter) with a cubic hole that turns
+// and then jumps back: far from the hole most tetrahedra keep the angles of
+// the undisturbed lattice (45, 60 and 90 degrees) to the bit, and a step's
+// quality pass guesses its extremes from the step before. Each step's
+// figures must be those of every element's angles computed one by one, also
+// at the jump back, where the extremes improve past the guess and the pass
+// is made again.
+TEST_CASE("deform 3D: each step's quality on a Kuhn box equals the elements' own, the guess of the extremes "
+          "missed or not",
+          "[deform][3d][quality]")
+{
+  const int n = 8;
+  std::vector<std::array<double, 3>> points;
+  for(int z = 0; z <= n; ++z)
+    for(int y = 0; y <= n; ++y)
+      for(int x = 0; x <= n; ++x)
+        points.push_back({double(x), double(y), double(z)});
+  const auto at = [&](int x, int y, int z) { return Index((z * (n + 1) + y) * (n + 1) + x); };
+  const int kuhn[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
+  std::vector<std::array<Index, 4>> elements;
+  const auto in_hole = [](int c) { return c >= 3 && c < 5; };
+  for(int z = 0; z < n; ++z)
+    for(int y = 0; y < n; ++y)
+      for(int x = 0; x < n; ++x)
+        if(!(in_hole(x) && in_hole(y) && in_hole(z)))
+          for(const auto& k : kuhn)
+            elements.push_back({at(x + (k[0] & 1), y + (k[0] >> 1 & 1), z + (k[0] >> 2)),
+                                at(x + (k[1] & 1), y + (k[1] >> 1 & 1), z + (k[1] >> 2)),
+                                at(x + (k[2] & 1), y + (k[2] >> 1 & 1), z + (k[2] >> 2)),
+                                at(x + (k[3] & 1), y + (k[3] >> 1 & 1), z + (k[3] >> 2))});
+  auto net = make_spring_network<3>(points, elements);
+  const auto roles = assign_roles(net, [](const Vertex_info<3>& v) {
+    if(!v.on_boundary)
+      return Vertex_role::free;
+    const bool hole = std::all_of(v.point.begin(), v.point.end(), [](double c) { return c >= 3 && c <= 5; });
+    return hole ? Vertex_role::moving : Vertex_role::fixed;
+  });
+  Network_deformer<3> deformer(net, roles);
+  const auto& moving = deformer.moving_vertices();
+  REQUIRE(moving.size() == 26);
+  const double pi = std::acos(-1.0);
+  std::size_t step = 0;
+  for(const double degrees : {2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 10.0, 0.0, 3.0, 0.0}) {
+    ++step;
+    const double a = degrees * pi / 180;
+    std::vector<std::array<double, 3>> d;
+    for(const Index v : moving) {
+      const auto& p = net.points[v];
+      d.push_back({4 + std::cos(a) * (p[0] - 4) - std::sin(a) * (p[1] - 4) - p[0],
+                   4 + std::sin(a) * (p[0] - 4) + std::cos(a) * (p[1] - 4) - p[1], 0.0});
+    }
+    for(const int threads : {1, 2}) {
+      Deform_options options;
+      options.solver.threads = threads;
+      Network_deformer<3> copy = deformer; // each thread count from the same state
+      const Step_report s = copy.move(d, Grid_scaled_stiffness{}, options);
+      REQUIRE(s.inverted == 0);
+      std::vector<double> min_angle;
+      const auto r = element_skewness(copy.network(), copy.positions(), 1, &min_angle);
+      double r_moving = 0, angle_moving = 180;
+      for(std::size_t t = 0; t < r.size(); ++t) {
+        bool touches = false;
+        for(const Index v : copy.network().elements[t])
+          touches = touches || roles[v] == Vertex_role::moving;
+        if(touches) {
+          r_moving = std::max(r_moving, r[t]);
+          angle_moving = std::min(angle_moving, min_angle[t]);
+        }
+      }
+      INFO("step " << step << " (" << degrees << " degrees), " << threads << " thread(s)");
+      CHECK(s.max_skewness_all == *std::max_element(r.begin(), r.end()));
+      CHECK(s.min_angle_deg_all == *std::min_element(min_angle.begin(), min_angle.end()));
+      CHECK(s.max_skewness_moving == r_moving);
+      CHECK(s.min_angle_deg_moving == angle_moving);
+      if(threads == 2)
+        deformer = std::move(copy);
+    }
+  }
+  CHECK(step == 10);
+}

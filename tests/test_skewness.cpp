@@ -442,6 +442,79 @@ TEST_CASE("dihedral_sines_squared_above: certain when true, and true for well-sh
   CHECK_FALSE(si::dihedral_sines_squared_above(corner, 0));
 }
 
+// With a bound for the acute angles and another for the obtuse ones: each
+// angle certainly above its own kind's bound when the test says true, and
+// true for well-shaped elements whose angles clear both bounds by 1%; the
+// kinds swapped would fail one or the other.
+TEST_CASE("dihedral_sines_squared_above with two bounds: certain when true, and true for well-shaped elements",
+          "[skewness][angles]")
+{
+  namespace si = spring_motion::internal;
+  std::mt19937_64 rng(20261204);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> squash(0, 2);
+  std::size_t said_true = 0, decided = 0, both_kinds = 0;
+  for(int trial = 0; trial < 20000; ++trial) {
+    const double f = std::pow(10.0, -squash(rng));
+    std::array<std::array<double, 3>, 4> p;
+    for(auto& q : p)
+      q = {u(rng), u(rng), f * u(rng)};
+    const auto angles = extended_dihedral_angles(p);
+    // the smallest sin^2 of each kind (1 where the element has none of it)
+    long double acute = 1, obtuse = 1;
+    bool has_acute = false, has_obtuse = false;
+    for(const long double a : angles) {
+      const bool is_acute = a < 1.5707963267948966192L;
+      (is_acute ? has_acute : has_obtuse) = true;
+      long double& m = is_acute ? acute : obtuse;
+      m = std::min(m, std::sin(a) * std::sin(a));
+    }
+    both_kinds += has_acute && has_obtuse;
+    long double v[3][3], longest = 0;
+    for(int k = 0; k < 3; ++k)
+      for(int c = 0; c < 3; ++c)
+        v[k][c] = (long double)(p[std::size_t(k) + 1][std::size_t(c)]) - p[0][std::size_t(c)];
+    const long double volume6 = std::abs(v[0][0] * (v[1][1] * v[2][2] - v[1][2] * v[2][1]) -
+                                         v[0][1] * (v[1][0] * v[2][2] - v[1][2] * v[2][0]) +
+                                         v[0][2] * (v[1][0] * v[2][1] - v[1][1] * v[2][0]));
+    for(int a = 0; a < 4; ++a)
+      for(int b = 0; b < a; ++b) {
+        long double l2 = 0;
+        for(int c = 0; c < 3; ++c)
+          l2 += ((long double)(p[std::size_t(a)][std::size_t(c)]) - p[std::size_t(b)][std::size_t(c)]) *
+                ((long double)(p[std::size_t(a)][std::size_t(c)]) - p[std::size_t(b)][std::size_t(c)]);
+        longest = std::max(longest, std::sqrt(l2));
+      }
+    const bool well_shaped = volume6 >= 1e-5L * longest * longest * longest;
+    INFO("trial " << trial << ", smallest sin^2 acute " << double(acute) << ", obtuse " << double(obtuse));
+    for(const double fa : {0.5, 0.99, 1 - 1e-9, 1.01})
+      for(const double fo : {0.0, 0.9, 0.99, 1 + 1e-9, 1.5}) {
+        const double ab = double(acute) * fa, ob = double(obtuse) * fo;
+        const bool above = si::dihedral_sines_squared_above(p, ab, ob);
+        said_true += above;
+        if(above) {
+          CHECK((!has_acute || acute > ab));
+          CHECK((!has_obtuse || obtuse > ob));
+        }
+        if(well_shaped && fa <= 0.99 && fo <= 0.99) {
+          CHECK(above);
+          ++decided;
+        }
+      }
+  }
+  CHECK(both_kinds > 5000);
+  CHECK(said_true > 20000);
+  CHECK(decided > 20000);
+  // the corner tetrahedron: three right angles (sin^2 1, the cosine's
+  // numerator exactly 0) and three of sin^2 2/3
+  const std::array<std::array<double, 3>, 4> corner{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  CHECK(si::dihedral_sines_squared_above(corner, 0.6, 0.99));
+  CHECK_FALSE(si::dihedral_sines_squared_above(corner, 0.7, 0.5));
+  CHECK_FALSE(si::dihedral_sines_squared_above(corner, 0.6, 1.0)); // a right angle is not above 1
+  const std::array<std::array<double, 3>, 4> flat{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}};
+  CHECK_FALSE(si::dihedral_sines_squared_above(flat, 0, 0.5));
+}
+
 // Quality_extremes::add_tetrahedron on jittered lattices of tetrahedra with
 // slivers, needles and flat elements among them, and copies of the extreme
 // elements moved by rounding-sized amounts (where a pass-over would have
@@ -456,7 +529,7 @@ TEST_CASE("Quality_extremes::add_tetrahedron: add()'s numbers bitwise, most elem
   std::uniform_real_distribution<double> u(-1, 1);
   // the six tetrahedra of a cube around its diagonal 0-7 (corner c = x + 2y + 4z)
   const int kuhn[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
-  std::size_t passed = 0, total = 0;
+  std::size_t passed = 0, total = 0, guessed_passed = 0, guessed_total = 0;
   for(int set = 0; set < 40; ++set) {
     const int n = 4 + set % 4;
     // the wedge's sets nearly regular (angles near 45, 60 and 90 degrees):
@@ -530,6 +603,43 @@ TEST_CASE("Quality_extremes::add_tetrahedron: add()'s numbers bitwise, most elem
     CHECK(passing.min_angle_deg() == every.min_angle_deg());
     CHECK(first.max_skewness(3) == every.max_skewness(3));
     CHECK(first.min_angle_deg() == every.min_angle_deg());
+    // guesses of the extremes: inside them (as a motion's last step moved
+    // inwards), the same numbers with the guess held, in one set or two
+    // merged; outside them, held never (their elements may be passed over)
+    const double smallest = every.smallest_angle(), largest = every.largest_angle();
+    for(const double inset : {1e-3, 0.05, 0.3}) {
+      si::Quality_extremes guessed, half, other;
+      for(auto* q : {&guessed, &half, &other})
+        q->guess(smallest + inset, largest - inset);
+      std::size_t passed_guessed = 0;
+      for(std::size_t i = 0; i < tets.size(); ++i) {
+        passed_guessed += guessed.add_tetrahedron(tets[i]);
+        (i < split ? half : other).add_tetrahedron(tets[i]);
+      }
+      half.merge(other);
+      CHECK(guessed.guess_held());
+      CHECK(half.guess_held());
+      CHECK(guessed.max_skewness(3) == every.max_skewness(3));
+      CHECK(guessed.min_angle_deg() == every.min_angle_deg());
+      CHECK(half.max_skewness(3) == every.max_skewness(3));
+      CHECK(half.min_angle_deg() == every.min_angle_deg());
+      guessed_passed += passed_guessed;
+      guessed_total += tets.size();
+    }
+    for(const double outset : {1e-3, 0.05}) {
+      si::Quality_extremes low, high;
+      low.guess(smallest - outset, largest - 1e-3);
+      high.guess(smallest + 1e-3, largest + outset);
+      for(const auto& t : tets) {
+        low.add_tetrahedron(t);
+        high.add_tetrahedron(t);
+      }
+      CHECK_FALSE(low.guess_held());
+      CHECK_FALSE(high.guess_held());
+    }
   }
   CHECK(passed > total / 2);
+  INFO("passed over: " << passed << " of " << total << " unguessed, " << guessed_passed << " of " << guessed_total
+                        << " guessed");
+  CHECK(guessed_passed > passed * 3); // three guesses per set, each passing over at least the unguessed
 }

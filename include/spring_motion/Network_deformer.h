@@ -418,41 +418,67 @@ private:
     const long m = long(initial_measure_.size());
     internal::Quality_extremes all, moving;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    // 3D: the last step's extremes, moved inwards, as a guess that passes
+    // over the tetrahedra inside them (Quality_extremes::guess); a pass whose
+    // guess did not hold is made again without it, and the next guess moved
+    // farther in
+    const bool guessed = D == 3 && quality_guess_.valid;
+    auto pass = [&](bool guess) {
+      all = moving = internal::Quality_extremes();
+      lo = std::numeric_limits<double>::infinity();
+      hi = -lo;
+      if(guess)
+        all.guess(quality_guess_.smallest + quality_guess_.inset, quality_guess_.largest - quality_guess_.inset);
 #pragma omp parallel num_threads(internal::thread_count(threads, std::size_t(m)))
-    {
-      internal::Quality_extremes my_all, my_moving;
-      double my_lo = lo, my_hi = hi;
+      {
+        internal::Quality_extremes my_all = all, my_moving;
+        double my_lo = lo, my_hi = hi;
 #pragma omp for schedule(static) nowait
-      for(long t = 0; t < m; ++t) {
-        const auto p = internal::traversal_element_points<D>(slots, xt, std::size_t(t));
-        // Most elements can hold neither an extreme angle (3D: passed over
-        // by a cheap bound) nor an extreme size ratio: a measure farther than
-        // 1e-12 (relative) inside the extremes so far times the initial one
-        // gives a quotient inside them too, and is not divided.
-        if(traversal_moving_[std::size_t(t)]) {
-          const auto e = internal::element_extreme_angles<D>(p);
-          my_all.add(e);
-          my_moving.add(e);
-        } else if constexpr(D == 3)
-          my_all.add_tetrahedron(p);
-        else
-          my_all.add(internal::element_extreme_angles<D>(p));
-        const double measure = scaled_measure(p), initial = initial_measure_[std::size_t(t)];
-        const double below = my_lo * initial, above = my_hi * initial;
-        if(!(initial > 0 && measure - below > 1e-12 * std::abs(below) && above - measure > 1e-12 * std::abs(above))) {
-          const double ratio = measure / initial;
-          my_lo = std::min(my_lo, ratio);
-          my_hi = std::max(my_hi, ratio);
+        for(long t = 0; t < m; ++t) {
+          const auto p = internal::traversal_element_points<D>(slots, xt, std::size_t(t));
+          // Most elements can hold neither an extreme angle (3D: passed over
+          // by a cheap bound) nor an extreme size ratio: a measure farther than
+          // 1e-12 (relative) inside the extremes so far times the initial one
+          // gives a quotient inside them too, and is not divided.
+          if(traversal_moving_[std::size_t(t)]) {
+            const auto e = internal::element_extreme_angles<D>(p);
+            my_all.add(e);
+            my_moving.add(e);
+          } else if constexpr(D == 3)
+            my_all.add_tetrahedron(p);
+          else
+            my_all.add(internal::element_extreme_angles<D>(p));
+          const double measure = scaled_measure(p), initial = initial_measure_[std::size_t(t)];
+          const double below = my_lo * initial, above = my_hi * initial;
+          if(!(initial > 0 && measure - below > 1e-12 * std::abs(below) &&
+               above - measure > 1e-12 * std::abs(above))) {
+            const double ratio = measure / initial;
+            my_lo = std::min(my_lo, ratio);
+            my_hi = std::max(my_hi, ratio);
+          }
+        }
+#pragma omp critical(spring_motion_step_quality)
+        {
+          all.merge(my_all);
+          moving.merge(my_moving);
+          lo = std::min(lo, my_lo);
+          hi = std::max(hi, my_hi);
         }
       }
-#pragma omp critical(spring_motion_step_quality)
-      {
-        all.merge(my_all);
-        moving.merge(my_moving);
-        lo = std::min(lo, my_lo);
-        hi = std::max(hi, my_hi);
-      }
+    };
+    pass(guessed);
+    if(guessed) {
+      const bool held = all.guess_held();
+      if(!held)
+        pass(false);
+      // farther in after a miss, slowly back towards the least inset after
+      // a hit (a motion that turns back improves its extremes for many steps)
+      quality_guess_.inset = held ? std::max(Quality_guess::least_inset, quality_guess_.inset * 0.75)
+                                  : std::min(Quality_guess::most_inset, quality_guess_.inset * 4);
     }
+    quality_guess_.smallest = all.smallest_angle();
+    quality_guess_.largest = all.largest_angle();
+    quality_guess_.valid = std::isfinite(quality_guess_.smallest) && std::isfinite(quality_guess_.largest);
     s.max_skewness_all = all.max_skewness(D);
     s.max_skewness_moving = moving.max_skewness(D);
     s.min_angle_deg_all = all.min_angle_deg();
@@ -730,6 +756,18 @@ private:
   // per element in the spatial traversal (Angle_slots): its initial
   // scaled_measure(), and whether it touches a moving vertex
   std::vector<double> initial_measure_;
+  // step_quality's guess: the last step's smallest and largest angle
+  // (radians) and how far inside them the next pass guesses. The least
+  // inset (0.06 degrees) keeps the guess beyond the angles of a structured
+  // mesh's undisturbed part when a small motion has moved the extremes
+  // little past them.
+  struct Quality_guess
+  {
+    static constexpr double least_inset = 1e-3, most_inset = 0.3;
+    bool valid = false;
+    double smallest = 0, largest = 0, inset = least_inset;
+  };
+  Quality_guess quality_guess_;
   std::vector<char> traversal_moving_;
   // scaled_measure(): coordinates times 2^measure_exponent_ (measure_scale_ when that is normal, else 0)
   int measure_exponent_ = 0;

@@ -144,26 +144,68 @@ public:
   }
   /// 3D: adds tetrahedron p, as add(dihedral_extreme_angles(p)) would, and
   /// returns true when it was passed over without computing its extreme
-  /// angles: every dihedral angle lies inside (a, pi - a) for a the larger
-  /// of the smallest angle so far and pi minus the largest, so it changes
-  /// neither (dihedral_sines_squared_above). On the wing nearly all
-  /// elements are passed over.
+  /// angles: every dihedral angle lies strictly between the smallest angle
+  /// so far and the largest, so it changes neither
+  /// (dihedral_sines_squared_above). On the wing nearly all elements are
+  /// passed over.
   bool add_tetrahedron(const std::array<std::array<double, 3>, 4>& p)
   {
-    if(smallest_ != bound_smallest_ || r_hi_ != bound_largest_) {
-      bound_smallest_ = smallest_;
-      bound_largest_ = r_hi_;
-      const double a = std::max(smallest_, pi - r_hi_);
-      // no element yet, or no obtuse angle yet: (a, pi - a) is empty
-      bound_ = a >= 0 && a < pi / 2 ? std::sin(a) * std::sin(a) : std::numeric_limits<double>::infinity();
+    const double lo = std::min(smallest_, guess_lo_), hi = std::max(r_hi_, guess_hi_);
+    if(lo != bound_smallest_ || hi != bound_largest_) {
+      bound_smallest_ = lo;
+      bound_largest_ = hi;
+      // sin^2 bounds of the acute and the obtuse angles, never_passed where
+      // no angle of that kind can pass: no element yet, or the range (lo, hi)
+      // not containing a right angle (sin^2 alone would not bound its far end)
+      const bool around_right = lo >= 0 && lo < pi / 2 && hi > pi / 2 && hi <= pi;
+      acute_bound_ = around_right ? std::sin(lo) * std::sin(lo) : never_passed;
+      obtuse_bound_ = around_right ? std::sin(hi) * std::sin(hi) : never_passed;
     }
-    if(!not_a_number_ && bound_ < 1 && dihedral_sines_squared_above(p, bound_)) {
-      ++count_;
-      return true;
+    if(!not_a_number_) {
+      // first the larger bound for all six angles, which on the wing passes
+      // nearly every element over; then the bound of each kind of angle, while
+      // it passes over at least a quarter of the elements that reach it (on
+      // the box most, on the wing few: there its dot products cost more than
+      // they save), and every 32nd of them after, to notice a change
+      const double larger = std::max(acute_bound_, obtuse_bound_);
+      bool passed = larger < 1 && dihedral_sines_squared_above(p, larger);
+      if(!passed && acute_bound_ != obtuse_bound_ && std::min(acute_bound_, obtuse_bound_) < 1 &&
+         (kind_tries_ < 256 || 4 * kind_passes_ >= kind_tries_ || ++kind_skips_ % 32 == 0)) {
+        ++kind_tries_;
+        passed = dihedral_sines_squared_above(p, acute_bound_, obtuse_bound_);
+        kind_passes_ += passed;
+      }
+      if(passed) {
+        ++count_;
+        return true;
+      }
     }
     add(dihedral_extreme_angles(p));
     return false;
   }
+  /// Passes over, besides, the tetrahedra whose angles all lie strictly
+  /// inside (lo, hi), a guess of the set's extremes (a motion's previous
+  /// step's, moved inwards): on a structured mesh most elements share the
+  /// extreme angles of its undisturbed part exactly, which no bound drawn
+  /// from the extremes so far passes over. The result is the set's only when
+  /// guess_held() after the last element (and the merges); otherwise the set
+  /// must be added again without the guess.
+  void guess(double lo, double hi)
+  {
+    guess_lo_ = lo;
+    guess_hi_ = hi;
+  }
+  /// Whether the extremes found lie at or beyond the guess, so that no
+  /// element passed over by it could hold one.
+  bool guess_held() const
+  {
+    return not_a_number_ || ((guess_lo_ == no_guess || smallest_ <= guess_lo_) &&
+                             (guess_hi_ == -no_guess || r_hi_ >= guess_hi_));
+  }
+  /// The smallest and the largest angle found (radians; infinite while no
+  /// element was added; the largest is R's).
+  double smallest_angle() const { return smallest_; }
+  double largest_angle() const { return r_hi_; }
   void merge(const Quality_extremes& o)
   {
     count_ += o.count_;
@@ -205,8 +247,13 @@ private:
   double min_key_ = std::numeric_limits<double>::infinity(), max_key_ = -min_key_;
   double smallest_ = min_key_;          // the smallest of the elements' smallest angles
   double r_lo_ = min_key_, r_hi_ = -r_lo_; // what R reads: min and max over both extremes
-  // add_tetrahedron's sin^2 bound and the extremes it was computed from
-  double bound_ = std::numeric_limits<double>::infinity(), bound_smallest_ = 0, bound_largest_ = 0;
+  // add_tetrahedron's sin^2 bounds and the range they were computed from
+  static constexpr double never_passed = 2; // above any sin^2 (finite: no inf * 0 for a flat element)
+  static constexpr double no_guess = std::numeric_limits<double>::infinity();
+  double acute_bound_ = never_passed, obtuse_bound_ = never_passed;
+  double bound_smallest_ = 0, bound_largest_ = 0;
+  double guess_lo_ = no_guess, guess_hi_ = -no_guess;
+  std::size_t kind_tries_ = 0, kind_passes_ = 0, kind_skips_ = 0; // the second bound's use so far
 };
 } // namespace internal
 

@@ -329,7 +329,18 @@ inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<do
 /// then below 1e-9 of their values, far inside the comparison's margin of
 /// 1e-6. L^2 between 1e-60 and 1e60 (checked; a coordinate that is not
 /// finite fails it) keeps the products finite and normal.
-inline bool dihedral_sines_squared_above(const std::array<std::array<double, 3>, 4>& p, double sine_squared)
+///
+/// With two bounds, an acute angle is held to `acute` and an obtuse one to
+/// `obtuse`: every angle lies strictly between alpha and pi - beta for
+/// sin^2(alpha) = acute and sin^2(beta) = obtuse, a range that need not be
+/// centred on a right angle (a Kuhn cube's tetrahedra have right angles, the
+/// largest of theirs, beside angles of 45 degrees). Whether an angle is acute
+/// is read from the sign of -g_i . g_j, the cosine's numerator: near a right
+/// angle, where rounding may give it the wrong sign, sin^2 is within 1e-9 of
+/// 1 and passes either bound or neither unless a bound lies within the
+/// margin of 1. With one bound (Kinds false) no dot product is formed.
+template <bool Kinds>
+inline bool dihedral_sines_squared_test(const std::array<std::array<double, 3>, 4>& p, double acute, double obtuse)
 {
   const double ax = p[1][0] - p[0][0], ay = p[1][1] - p[0][1], az = p[1][2] - p[0][2];
   const double bx = p[2][0] - p[0][0], by = p[2][1] - p[0][1], bz = p[2][2] - p[0][2];
@@ -349,12 +360,35 @@ inline bool dihedral_sines_squared_above(const std::array<std::array<double, 3>,
                l03 = cx * cx + cy * cy + cz * cz, l12 = dx * dx + dy * dy + dz * dz,
                l13 = ex * ex + ey * ey + ez * ez, l23 = hx * hx + hy * hy + hz * hz;
   const double longest = std::max({l01, l02, l03, l12, l13, l23});
-  const double t = sine_squared * (1 + 1e-6);
+  const double ta = acute * (1 + 1e-6), to = obtuse * (1 + 1e-6);
+  // the bound of the angle between faces i and j
+  auto bound = [&](double gix, double giy, double giz, double gjx, double gjy, double gjz) {
+    if constexpr(Kinds)
+      return gix * gjx + giy * gjy + giz * gjz < 0 ? ta : to;
+    else {
+      (void)gix, (void)giy, (void)giz, (void)gjx, (void)gjy, (void)gjz, (void)to;
+      return ta;
+    }
+  };
   // the faces at edge k are those opposite its two other vertices
   // (Simplex_tables<3>::other); & rather than &&: no branch per edge
   return (longest >= 1e-60) & (longest <= 1e60) & (v2 >= 1e-12 * longest * longest * longest) &
-         (v2 * l01 > t * (f2 * f3)) & (v2 * l02 > t * (f1 * f3)) & (v2 * l03 > t * (f1 * f2)) &
-         (v2 * l12 > t * (f0 * f3)) & (v2 * l13 > t * (f0 * f2)) & (v2 * l23 > t * (f0 * f1));
+         (v2 * l01 > bound(g2x, g2y, g2z, g3x, g3y, g3z) * (f2 * f3)) &
+         (v2 * l02 > bound(g1x, g1y, g1z, g3x, g3y, g3z) * (f1 * f3)) &
+         (v2 * l03 > bound(g1x, g1y, g1z, g2x, g2y, g2z) * (f1 * f2)) &
+         (v2 * l12 > bound(g0x, g0y, g0z, g3x, g3y, g3z) * (f0 * f3)) &
+         (v2 * l13 > bound(g0x, g0y, g0z, g2x, g2y, g2z) * (f0 * f2)) &
+         (v2 * l23 > bound(g0x, g0y, g0z, g1x, g1y, g1z) * (f0 * f1));
+}
+
+inline bool dihedral_sines_squared_above(const std::array<std::array<double, 3>, 4>& p, double sine_squared)
+{
+  return dihedral_sines_squared_test<false>(p, sine_squared, sine_squared);
+}
+
+inline bool dihedral_sines_squared_above(const std::array<std::array<double, 3>, 4>& p, double acute, double obtuse)
+{
+  return dihedral_sines_squared_test<true>(p, acute, obtuse);
 }
 
 /// 1/sin^2 of the triangle's angle at each vertex, as triangle_angles

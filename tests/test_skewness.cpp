@@ -374,6 +374,27 @@ TEST_CASE("Quality_extremes: a set's largest R and smallest angle, with atan2 on
 // dihedral angle exceeds the bound, the angles computed in extended precision
 // agree; and on well-shaped elements with a bound clearly below their
 // smallest sin^2 it decides (else it would pass over nothing).
+// 6|V| over the longest edge cubed, in extended precision
+static long double extended_shape(const std::array<std::array<double, 3>, 4>& p)
+{
+  long double v[3][3], longest = 0;
+  for(int k = 0; k < 3; ++k)
+    for(int c = 0; c < 3; ++c)
+      v[k][c] = (long double)(p[std::size_t(k) + 1][std::size_t(c)]) - p[0][std::size_t(c)];
+  const long double volume6 = std::abs(v[0][0] * (v[1][1] * v[2][2] - v[1][2] * v[2][1]) -
+                                       v[0][1] * (v[1][0] * v[2][2] - v[1][2] * v[2][0]) +
+                                       v[0][2] * (v[1][0] * v[2][1] - v[1][1] * v[2][0]));
+  for(int a = 0; a < 4; ++a)
+    for(int b = 0; b < a; ++b) {
+      long double l2 = 0;
+      for(int c = 0; c < 3; ++c)
+        l2 += ((long double)(p[std::size_t(a)][std::size_t(c)]) - p[std::size_t(b)][std::size_t(c)]) *
+              ((long double)(p[std::size_t(a)][std::size_t(c)]) - p[std::size_t(b)][std::size_t(c)]);
+      longest = std::max(longest, std::sqrt(l2));
+    }
+  return volume6 / (longest * longest * longest);
+}
+
 TEST_CASE("dihedral_sines_squared_above: certain when true, and true for well-shaped elements", "[skewness][angles]")
 {
   namespace si = spring_motion::internal;
@@ -395,25 +416,9 @@ TEST_CASE("dihedral_sines_squared_above: certain when true, and true for well-sh
     long double smallest = 1;
     for(const long double a : angles)
       smallest = std::min(smallest, std::sin(a) * std::sin(a));
-    // 6|V| against the longest edge cubed, in extended precision
-    long double v[3][3], longest = 0;
-    for(int k = 0; k < 3; ++k)
-      for(int c = 0; c < 3; ++c)
-        v[k][c] = (long double)(p[std::size_t(k) + 1][std::size_t(c)]) - p[0][std::size_t(c)];
-    const long double volume6 = std::abs(v[0][0] * (v[1][1] * v[2][2] - v[1][2] * v[2][1]) -
-                                         v[0][1] * (v[1][0] * v[2][2] - v[1][2] * v[2][0]) +
-                                         v[0][2] * (v[1][0] * v[2][1] - v[1][1] * v[2][0]));
-    for(int a = 0; a < 4; ++a)
-      for(int b = 0; b < a; ++b) {
-        long double l2 = 0;
-        for(int c = 0; c < 3; ++c)
-          l2 += ((long double)(p[std::size_t(a)][std::size_t(c)]) - p[std::size_t(b)][std::size_t(c)]) *
-                ((long double)(p[std::size_t(a)][std::size_t(c)]) - p[std::size_t(b)][std::size_t(c)]);
-        longest = std::max(longest, std::sqrt(l2));
-      }
-    const bool well_shaped = volume6 >= 1e-5L * longest * longest * longest;
-    INFO("trial " << trial << ", smallest sin^2 " << double(smallest) << ", 6V / L^3 "
-                  << double(volume6 / (longest * longest * longest)));
+    const long double shape = extended_shape(p);
+    const bool well_shaped = shape >= 1e-5L;
+    INFO("trial " << trial << ", smallest sin^2 " << double(smallest) << ", 6V / L^3 " << double(shape));
     for(const double factor : {0.0, 0.5, 0.99, 1 - 1e-5, 1 - 1e-9, 1 + 1e-9, 1.01, 2.0}) {
       const double bound = double(smallest) * factor;
       const bool above = si::dihedral_sines_squared_above(p, bound);
@@ -470,22 +475,7 @@ TEST_CASE("dihedral_sines_squared_above with two bounds: certain when true, and 
       m = std::min(m, std::sin(a) * std::sin(a));
     }
     both_kinds += has_acute && has_obtuse;
-    long double v[3][3], longest = 0;
-    for(int k = 0; k < 3; ++k)
-      for(int c = 0; c < 3; ++c)
-        v[k][c] = (long double)(p[std::size_t(k) + 1][std::size_t(c)]) - p[0][std::size_t(c)];
-    const long double volume6 = std::abs(v[0][0] * (v[1][1] * v[2][2] - v[1][2] * v[2][1]) -
-                                         v[0][1] * (v[1][0] * v[2][2] - v[1][2] * v[2][0]) +
-                                         v[0][2] * (v[1][0] * v[2][1] - v[1][1] * v[2][0]));
-    for(int a = 0; a < 4; ++a)
-      for(int b = 0; b < a; ++b) {
-        long double l2 = 0;
-        for(int c = 0; c < 3; ++c)
-          l2 += ((long double)(p[std::size_t(a)][std::size_t(c)]) - p[std::size_t(b)][std::size_t(c)]) *
-                ((long double)(p[std::size_t(a)][std::size_t(c)]) - p[std::size_t(b)][std::size_t(c)]);
-        longest = std::max(longest, std::sqrt(l2));
-      }
-    const bool well_shaped = volume6 >= 1e-5L * longest * longest * longest;
+    const bool well_shaped = extended_shape(p) >= 1e-5L;
     INFO("trial " << trial << ", smallest sin^2 acute " << double(acute) << ", obtuse " << double(obtuse));
     for(const double fa : {0.5, 0.99, 1 - 1e-9, 1.01})
       for(const double fo : {0.0, 0.9, 0.99, 1 + 1e-9, 1.5}) {

@@ -1,6 +1,7 @@
 // deform() in 3D on CGAL meshes: a Delaunay Triangulation_3 and a Mesh_3
 // complex (a box with a box-shaped hole, made by the library's Mesh_3 domain).
 #include <spring_motion/deform.h>
+#include "test_meshes.h"
 #include <naca0012/Naca0012_wing_mesh_3.h>
 #include <spring_motion/mesh_traits/Mesh_complex_3_in_triangulation_3.h>
 #include <spring_motion/mesh_traits/Triangulation_3.h>
@@ -221,26 +222,18 @@ TEST_CASE("deform 3D: each step's quality on a Kuhn box equals the elements' own
           "missed or not",
           "[deform][3d][quality]")
 {
-  const int n = 8;
-  std::vector<std::array<double, 3>> points;
-  for(int z = 0; z <= n; ++z)
-    for(int y = 0; y <= n; ++y)
-      for(int x = 0; x <= n; ++x)
-        points.push_back({double(x), double(y), double(z)});
-  const auto at = [&](int x, int y, int z) { return Index((z * (n + 1) + y) * (n + 1) + x); };
-  const int kuhn[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
+  // the 8^3 cubes' tetrahedra, without those of the 2^3 cubes around the centre
+  const Indexed_mesh<3> box = spring_motion_test::kuhn_grid<3>(8, 0.0);
   std::vector<std::array<Index, 4>> elements;
-  const auto in_hole = [](int c) { return c >= 3 && c < 5; };
-  for(int z = 0; z < n; ++z)
-    for(int y = 0; y < n; ++y)
-      for(int x = 0; x < n; ++x)
-        if(!(in_hole(x) && in_hole(y) && in_hole(z)))
-          for(const auto& k : kuhn)
-            elements.push_back({at(x + (k[0] & 1), y + (k[0] >> 1 & 1), z + (k[0] >> 2)),
-                                at(x + (k[1] & 1), y + (k[1] >> 1 & 1), z + (k[1] >> 2)),
-                                at(x + (k[2] & 1), y + (k[2] >> 1 & 1), z + (k[2] >> 2)),
-                                at(x + (k[3] & 1), y + (k[3] >> 1 & 1), z + (k[3] >> 2))});
-  auto net = make_spring_network<3>(points, elements);
+  for(const auto& e : box.elements) {
+    std::array<double, 3> c{};
+    for(const Index v : e)
+      for(int a = 0; a < 3; ++a)
+        c[std::size_t(a)] += box.points[v][std::size_t(a)] / 4;
+    if(!std::all_of(c.begin(), c.end(), [](double x) { return x > 3 && x < 5; }))
+      elements.push_back(e);
+  }
+  auto net = make_spring_network<3>(box.points, elements);
   const auto roles = assign_roles(net, [](const Vertex_info<3>& v) {
     if(!v.on_boundary)
       return Vertex_role::free;

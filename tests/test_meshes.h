@@ -106,9 +106,9 @@ inline spring_motion::Naca0012_wing_mesh_3_options coarse_wing_options()
 }
 
 // [0,n]^D cut into simplices (Kuhn: each cell along the permutations of its
-// axes), interior vertices jittered
+// axes), interior vertices jittered by up to `jitter` (0: the exact lattice)
 template <int D>
-inline spring_motion::Indexed_mesh<D> kuhn_grid(int n)
+inline spring_motion::Indexed_mesh<D> kuhn_grid(int n, double jitter = 0.15)
 {
   spring_motion::Indexed_mesh<D> mesh;
   const int s = n + 1;
@@ -131,7 +131,7 @@ inline spring_motion::Indexed_mesh<D> kuhn_grid(int n)
     }
     if(interior)
       for(int a = 0; a < D; ++a)
-        p[a] += 0.15 * std::sin(7.0 * k + 3.0 * a);
+        p[a] += jitter * std::sin(7.0 * k + 3.0 * a);
     mesh.points.push_back(p);
   }
   std::array<int, D> perm;

@@ -289,8 +289,8 @@ std::vector<std::array<Index, D>> boundary_facets(const Spring_network<D>& net)
       for(int i : {1, 2})
         if(v[std::size_t(l[std::size_t(i)])] < v[std::size_t(l[0])])
           std::swap(l[0], l[std::size_t(i)]);
-      return std::pair<Index, Index>{
-          v[std::size_t(l[0])], net.element_edges[t * E + std::size_t(local_edge[std::size_t(l[1])][std::size_t(l[2])])]};
+      const std::size_t j = std::size_t(local_edge[std::size_t(l[1])][std::size_t(l[2])]);
+      return std::pair<Index, Index>{v[std::size_t(l[0])], net.element_edges[t * E + j]};
     };
     // the facets' edges, grouped by their smallest vertex a: [start[a], start[a + 1])
     std::vector<Index> start, edge_of;

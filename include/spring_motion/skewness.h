@@ -196,12 +196,9 @@ public:
     guess_hi_ = hi;
   }
   /// Whether the extremes found lie at or beyond the guess, so that no
-  /// element passed over by it could hold one.
-  bool guess_held() const
-  {
-    return not_a_number_ || ((guess_lo_ == no_guess || smallest_ <= guess_lo_) &&
-                             (guess_hi_ == -no_guess || r_hi_ >= guess_hi_));
-  }
+  /// element passed over by it could hold one (true without a guess: its
+  /// infinite ends lie beyond anything found).
+  bool guess_held() const { return not_a_number_ || (smallest_ <= guess_lo_ && r_hi_ >= guess_hi_); }
   /// The smallest and the largest angle found (radians; infinite while no
   /// element was added; the largest is R's).
   double smallest_angle() const { return smallest_; }

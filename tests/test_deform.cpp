@@ -8,9 +8,12 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <type_traits>
 
 using namespace spring_motion;
 using namespace spring_motion_test;
@@ -329,6 +332,91 @@ TEST_CASE("deform: the reports give the smallest and largest area ratio", "[defo
   std::ostringstream json;
   write_report_json(report, json);
   CHECK_THAT(json.str(), Catch::Contains("\"max_size_ratio\": 1.4"));
+}
+
+// A Kuhn grid (two triangles a square, six tetrahedra a cube) with a hole
+// that turns and then jumps back, its interior vertices jittered or not
+// (then far from the hole most elements keep the angles of the undisturbed
+// lattice, 45 and 90 degrees, 60 too in 3D, to the bit). A step's quality
+// pass guesses its extremes from the step before. Each step's figures must
+// be those of every element's angles computed one by one, also at the jump
+// back, where the extremes improve past the guess and the pass is made
+// again.
+TEMPLATE_TEST_CASE("deform: each step's quality on a Kuhn grid equals the elements' own, the guess of the extremes "
+                   "missed or not",
+                   "[deform][quality]", (std::integral_constant<int, 2>), (std::integral_constant<int, 3>))
+{
+  constexpr int D = TestType::value;
+  using Point = std::array<double, D>;
+  const double jitter = GENERATE(0.0, 0.15);
+  INFO("jitter " << jitter);
+  // the 8^D cells' elements, without those of the 2^D cells around the centre
+  const Indexed_mesh<D> box = spring_motion_test::kuhn_grid<D>(8, jitter);
+  // the hole and its vertices found on the unjittered lattice (the same numbering)
+  const Indexed_mesh<D> lattice = spring_motion_test::kuhn_grid<D>(8, 0.0);
+  const auto in_hole = [](const Point& p, bool closed) {
+    return std::all_of(p.begin(), p.end(), [&](double x) { return closed ? x >= 3 && x <= 5 : x > 3 && x < 5; });
+  };
+  std::vector<std::array<Index, D + 1>> elements;
+  for(const auto& e : box.elements) {
+    Point c{};
+    for(const Index v : e)
+      for(int a = 0; a < D; ++a)
+        c[std::size_t(a)] += lattice.points[v][std::size_t(a)] / (D + 1);
+    if(!in_hole(c, false))
+      elements.push_back(e);
+  }
+  auto net = make_spring_network<D>(box.points, elements);
+  const auto roles = assign_roles(net, [&](const Vertex_info<D>& v) {
+    if(!v.on_boundary)
+      return Vertex_role::free;
+    return in_hole(lattice.points[v.index], true) ? Vertex_role::moving : Vertex_role::fixed;
+  });
+  Network_deformer<D> deformer(net, roles);
+  const auto& moving = deformer.moving_vertices();
+  REQUIRE(moving.size() == (D == 2 ? 8u : 26u));
+  const double pi = std::acos(-1.0);
+  std::size_t step = 0;
+  for(const double degrees : {2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 10.0, 0.0, 3.0, 0.0}) {
+    ++step;
+    const double a = degrees * pi / 180;
+    // a turn about the hole's centre in the xy plane
+    std::vector<Point> d;
+    for(const Index v : moving) {
+      const auto& p = net.points[v];
+      Point q{};
+      q[0] = 4 + std::cos(a) * (p[0] - 4) - std::sin(a) * (p[1] - 4) - p[0];
+      q[1] = 4 + std::sin(a) * (p[0] - 4) + std::cos(a) * (p[1] - 4) - p[1];
+      d.push_back(q);
+    }
+    for(const int threads : {1, 2}) {
+      Deform_options options;
+      options.solver.threads = threads;
+      Network_deformer<D> copy = deformer; // each thread count from the same state
+      const Step_report s = copy.move(d, Grid_scaled_stiffness{}, options);
+      REQUIRE(s.inverted == 0);
+      std::vector<double> min_angle;
+      const auto r = element_skewness(copy.network(), copy.positions(), 1, &min_angle);
+      double r_moving = 0, angle_moving = 180;
+      for(std::size_t t = 0; t < r.size(); ++t) {
+        bool touches = false;
+        for(const Index v : copy.network().elements[t])
+          touches = touches || roles[v] == Vertex_role::moving;
+        if(touches) {
+          r_moving = std::max(r_moving, r[t]);
+          angle_moving = std::min(angle_moving, min_angle[t]);
+        }
+      }
+      INFO("step " << step << " (" << degrees << " degrees), " << threads << " thread(s)");
+      CHECK(s.max_skewness_all == *std::max_element(r.begin(), r.end()));
+      CHECK(s.min_angle_deg_all == *std::min_element(min_angle.begin(), min_angle.end()));
+      CHECK(s.max_skewness_moving == r_moving);
+      CHECK(s.min_angle_deg_moving == angle_moving);
+      if(threads == 2)
+        deformer = std::move(copy);
+    }
+  }
+  CHECK(step == 10);
 }
 
 namespace {

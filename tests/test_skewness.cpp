@@ -370,10 +370,6 @@ TEST_CASE("Quality_extremes: a set's largest R and smallest angle, with atan2 on
   CHECK(none.min_angle_deg() == 180);
 }
 
-// The pass-over test of the per-step quality: where it says every sin^2 of a
-// dihedral angle exceeds the bound, the angles computed in extended precision
-// agree; and on well-shaped elements with a bound clearly below their
-// smallest sin^2 it decides (else it would pass over nothing).
 // 6|V| over the longest edge cubed, in extended precision
 static long double extended_shape(const std::array<std::array<double, 3>, 4>& p)
 {
@@ -395,7 +391,35 @@ static long double extended_shape(const std::array<std::array<double, 3>, 4>& p)
   return volume6 / (longest * longest * longest);
 }
 
-TEST_CASE("dihedral_sines_squared_above: certain when true, and true for well-shaped elements", "[skewness][angles]")
+// Factors of an element's smallest sin^2 that the pass-over tests are tried at.
+constexpr double bound_factors[] = {0.0, 0.5, 0.99, 1 - 1e-5, 1 - 1e-9, 1 + 1e-9, 1.01, 2.0};
+
+// The one-bound pass-over test of element p at bounds around its smallest
+// sin^2 (from extended precision): never true unless the smallest is above
+// the bound; on a well-shaped element true below 0.99 of it.
+template <int D>
+void check_one_bound(const std::array<std::array<double, D>, D + 1>& p, long double smallest, bool well_shaped,
+                     std::size_t& said_true, std::size_t& decided)
+{
+  for(const double factor : bound_factors) {
+    const double bound = double(smallest) * factor;
+    const bool above = spring_motion::internal::element_sines_squared_above<D>(p, bound);
+    said_true += above;
+    if(above)
+      CHECK(smallest > bound);
+    if(well_shaped && factor <= 0.99) {
+      CHECK(above);
+      ++decided;
+    }
+  }
+}
+
+// The pass-over test of the per-step quality: where it says every sin^2 of a
+// dihedral angle exceeds the bound, the angles computed in extended precision
+// agree; and on well-shaped elements with a bound clearly below their
+// smallest sin^2 it decides (else it would pass over nothing).
+TEST_CASE("element_sines_squared_above for tetrahedra: certain when true, and true for well-shaped elements",
+          "[skewness][angles]")
 {
   namespace si = spring_motion::internal;
   std::mt19937_64 rng(20261128);
@@ -419,39 +443,30 @@ TEST_CASE("dihedral_sines_squared_above: certain when true, and true for well-sh
     const long double shape = extended_shape(p);
     const bool well_shaped = shape >= 1e-5L;
     INFO("trial " << trial << ", smallest sin^2 " << double(smallest) << ", 6V / L^3 " << double(shape));
-    for(const double factor : {0.0, 0.5, 0.99, 1 - 1e-5, 1 - 1e-9, 1 + 1e-9, 1.01, 2.0}) {
-      const double bound = double(smallest) * factor;
-      const bool above = si::dihedral_sines_squared_above(p, bound);
-      said_true += above;
-      if(above)
-        CHECK(smallest > bound);
-      if(well_shaped && factor <= 0.99) {
-        CHECK(above);
-        ++decided;
-      }
-    }
+    check_one_bound<3>(p, smallest, well_shaped, said_true, decided);
   }
   CHECK(said_true > 10000);
   CHECK(decided > 10000);
   // flat, coincident and non-finite corners: never passed over
   const std::array<std::array<double, 3>, 4> flat{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}};
-  CHECK_FALSE(si::dihedral_sines_squared_above(flat, 0));
+  CHECK_FALSE(si::element_sines_squared_above<3>(flat, 0));
   const std::array<std::array<double, 3>, 4> pinched{{{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-  CHECK_FALSE(si::dihedral_sines_squared_above(pinched, 0));
+  CHECK_FALSE(si::element_sines_squared_above<3>(pinched, 0));
   std::array<std::array<double, 3>, 4> corner{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-  CHECK(si::dihedral_sines_squared_above(corner, 0.5)); // sin^2 of its angles: 1 and 2/3
-  CHECK_FALSE(si::dihedral_sines_squared_above(corner, 0.7));
+  CHECK(si::element_sines_squared_above<3>(corner, 0.5)); // sin^2 of its angles: 1 and 2/3
+  CHECK_FALSE(si::element_sines_squared_above<3>(corner, 0.7));
   corner[3][2] = std::numeric_limits<double>::infinity();
-  CHECK_FALSE(si::dihedral_sines_squared_above(corner, 0));
+  CHECK_FALSE(si::element_sines_squared_above<3>(corner, 0));
   corner[3][2] = std::nan("");
-  CHECK_FALSE(si::dihedral_sines_squared_above(corner, 0));
+  CHECK_FALSE(si::element_sines_squared_above<3>(corner, 0));
 }
 
 // With a bound for the acute angles and another for the obtuse ones: each
 // angle certainly above its own kind's bound when the test says true, and
 // true for well-shaped elements whose angles clear both bounds by 1%; the
 // kinds swapped would fail one or the other.
-TEST_CASE("dihedral_sines_squared_above with two bounds: certain when true, and true for well-shaped elements",
+TEST_CASE("element_sines_squared_above for tetrahedra with two bounds: certain when true, and true for "
+          "well-shaped elements",
           "[skewness][angles]")
 {
   namespace si = spring_motion::internal;
@@ -480,7 +495,7 @@ TEST_CASE("dihedral_sines_squared_above with two bounds: certain when true, and 
     for(const double fa : {0.5, 0.99, 1 - 1e-9, 1.01})
       for(const double fo : {0.0, 0.9, 0.99, 1 + 1e-9, 1.5}) {
         const double ab = double(acute) * fa, ob = double(obtuse) * fo;
-        const bool above = si::dihedral_sines_squared_above(p, ab, ob);
+        const bool above = si::element_sines_squared_above<3>(p, ab, ob);
         said_true += above;
         if(above) {
           CHECK((!has_acute || acute > ab));
@@ -498,19 +513,101 @@ TEST_CASE("dihedral_sines_squared_above with two bounds: certain when true, and 
   // the corner tetrahedron: three right angles (sin^2 1, the cosine's
   // numerator exactly 0) and three of sin^2 2/3
   const std::array<std::array<double, 3>, 4> corner{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-  CHECK(si::dihedral_sines_squared_above(corner, 0.6, 0.99));
-  CHECK_FALSE(si::dihedral_sines_squared_above(corner, 0.7, 0.5));
-  CHECK_FALSE(si::dihedral_sines_squared_above(corner, 0.6, 1.0)); // a right angle is not above 1
+  CHECK(si::element_sines_squared_above<3>(corner, 0.6, 0.99));
+  CHECK_FALSE(si::element_sines_squared_above<3>(corner, 0.7, 0.5));
+  CHECK_FALSE(si::element_sines_squared_above<3>(corner, 0.6, 1.0)); // a right angle is not above 1
   const std::array<std::array<double, 3>, 4> flat{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}};
-  CHECK_FALSE(si::dihedral_sines_squared_above(flat, 0, 0.5));
+  CHECK_FALSE(si::element_sines_squared_above<3>(flat, 0, 0.5));
 }
 
-// Quality_extremes::add_tetrahedron on jittered lattices of tetrahedra with
+// Copies of the elements holding the smallest and the largest angle, moved
+// by rounding-sized amounts, at random places after them: where a pass-over
+// would have to be exact to the last bit.
+template <int D, class Rng>
+void add_rounded_copies(std::vector<std::array<std::array<double, D>, D + 1>>& elements, Rng& rng)
+{
+  namespace si = spring_motion::internal;
+  const auto range = [](const std::array<std::array<double, D>, D + 1>& t) {
+    if constexpr(D == 2)
+      return si::triangle_angle_range<2>(t[0], t[1], t[2]);
+    else
+      return si::dihedral_angle_range(t);
+  };
+  for(const bool largest : {false, true}) {
+    std::size_t e = 0;
+    for(std::size_t i = 1; i < elements.size(); ++i) {
+      const auto a = range(elements[i]), b = range(elements[e]);
+      if(largest ? a[1] > b[1] : a[0] < b[0])
+        e = i;
+    }
+    for(int copy = 0; copy < 20; ++copy) {
+      auto t = elements[e];
+      for(auto& q : t)
+        for(auto& x : q)
+          x *= 1 + 1e-16 * double(int(rng() % 9) - 4);
+      elements.insert(elements.begin() + long(e + 1 + rng() % (elements.size() - e)), t);
+    }
+  }
+}
+
+// Quality_extremes::add_element<D> over `elements`: add()'s numbers of
+// every element, bitwise, in one set and in two (the first `split` elements
+// and the rest) merged, as threads do; the same with guesses of the
+// extremes inside them (as a motion's last step moved inwards), the guess
+// held; with guesses outside them, held never (their elements may be
+// passed over). Counts the elements passed over without a guess and with.
+template <int D>
+void check_pass_over(const std::vector<std::array<std::array<double, D>, D + 1>>& elements, std::size_t split,
+                     std::size_t& passed, std::size_t& guessed_passed)
+{
+  namespace si = spring_motion::internal;
+  si::Quality_extremes every, passing, first, second;
+  for(std::size_t i = 0; i < elements.size(); ++i) {
+    every.add(si::element_extreme_angles<D>(elements[i]));
+    passed += passing.add_element<D>(elements[i]);
+    (i < split ? first : second).add_element<D>(elements[i]);
+  }
+  first.merge(second);
+  CHECK(passing.max_skewness(D) == every.max_skewness(D));
+  CHECK(passing.min_angle_deg() == every.min_angle_deg());
+  CHECK(first.max_skewness(D) == every.max_skewness(D));
+  CHECK(first.min_angle_deg() == every.min_angle_deg());
+  const double smallest = every.smallest_angle(), largest = every.largest_angle();
+  for(const double inset : {1e-3, 0.05, 0.3}) {
+    si::Quality_extremes guessed, half, other;
+    for(auto* q : {&guessed, &half, &other})
+      q->guess(smallest + inset, largest - inset);
+    for(std::size_t i = 0; i < elements.size(); ++i) {
+      guessed_passed += guessed.add_element<D>(elements[i]);
+      (i < split ? half : other).add_element<D>(elements[i]);
+    }
+    half.merge(other);
+    CHECK(guessed.guess_held());
+    CHECK(half.guess_held());
+    CHECK(guessed.max_skewness(D) == every.max_skewness(D));
+    CHECK(guessed.min_angle_deg() == every.min_angle_deg());
+    CHECK(half.max_skewness(D) == every.max_skewness(D));
+    CHECK(half.min_angle_deg() == every.min_angle_deg());
+  }
+  for(const double outset : {1e-3, 0.05}) {
+    si::Quality_extremes low, high;
+    low.guess(smallest - outset, largest - 1e-3);
+    high.guess(smallest + 1e-3, largest + outset);
+    for(const auto& e : elements) {
+      low.add_element<D>(e);
+      high.add_element<D>(e);
+    }
+    CHECK_FALSE(low.guess_held());
+    CHECK_FALSE(high.guess_held());
+  }
+}
+
+// Quality_extremes::add_element on jittered lattices of tetrahedra with
 // slivers, needles and flat elements among them, and copies of the extreme
 // elements moved by rounding-sized amounts (where a pass-over would have
 // to be exact to the last bit): the same numbers as add() of every element,
 // bitwise, with most elements passed over.
-TEST_CASE("Quality_extremes::add_tetrahedron: add()'s numbers bitwise, most elements passed over",
+TEST_CASE("Quality_extremes::add_element in 3D: add()'s numbers bitwise, most elements passed over",
           "[skewness][angles]")
 {
   namespace si = spring_motion::internal;
@@ -519,7 +616,7 @@ TEST_CASE("Quality_extremes::add_tetrahedron: add()'s numbers bitwise, most elem
   std::uniform_real_distribution<double> u(-1, 1);
   // the six tetrahedra of a cube around its diagonal 0-7 (corner c = x + 2y + 4z)
   const int kuhn[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
-  std::size_t passed = 0, total = 0, guessed_passed = 0, guessed_total = 0;
+  std::size_t passed = 0, total = 0, guessed_passed = 0;
   for(int set = 0; set < 40; ++set) {
     const int n = 4 + set % 4;
     // the wedge's sets nearly regular (angles near 45, 60 and 90 degrees):
@@ -559,77 +656,157 @@ TEST_CASE("Quality_extremes::add_tetrahedron: add()'s numbers bitwise, most elem
         t[3] = t[0];
       tets.insert(tets.begin() + long(rng() % tets.size()), t);
     }
-    // rounding-sized copies of the elements holding the extremes, after them
-    const auto rank_of = [&](bool largest) {
-      std::size_t best = 0;
-      for(std::size_t i = 1; i < tets.size(); ++i) {
-        const auto a = si::dihedral_angle_range(tets[i]), b = si::dihedral_angle_range(tets[best]);
-        if(largest ? a[1] > b[1] : a[0] < b[0])
-          best = i;
-      }
-      return best;
-    };
-    for(const bool largest : {false, true}) {
-      const std::size_t e = rank_of(largest);
-      for(int copy = 0; copy < 20; ++copy) {
-        Tet t = tets[e];
-        for(auto& q : t)
-          for(auto& x : q)
-            x *= 1 + 1e-16 * double(int(rng() % 9) - 4);
-        tets.insert(tets.begin() + long(e + 1 + rng() % (tets.size() - e)), t);
-      }
-    }
-    si::Quality_extremes every, passing, first, second;
-    const std::size_t split = rng() % tets.size();
-    for(std::size_t i = 0; i < tets.size(); ++i) {
-      every.add(si::dihedral_extreme_angles(tets[i]));
-      passed += passing.add_tetrahedron(tets[i]);
-      (i < split ? first : second).add_tetrahedron(tets[i]);
-    }
-    total += tets.size();
-    first.merge(second);
+    add_rounded_copies<3>(tets, rng);
     INFO("set " << set << ", " << tets.size() << " elements, jitter " << jitter);
-    CHECK(passing.max_skewness(3) == every.max_skewness(3));
-    CHECK(passing.min_angle_deg() == every.min_angle_deg());
-    CHECK(first.max_skewness(3) == every.max_skewness(3));
-    CHECK(first.min_angle_deg() == every.min_angle_deg());
-    // guesses of the extremes: inside them (as a motion's last step moved
-    // inwards), the same numbers with the guess held, in one set or two
-    // merged; outside them, held never (their elements may be passed over)
-    const double smallest = every.smallest_angle(), largest = every.largest_angle();
-    for(const double inset : {1e-3, 0.05, 0.3}) {
-      si::Quality_extremes guessed, half, other;
-      for(auto* q : {&guessed, &half, &other})
-        q->guess(smallest + inset, largest - inset);
-      std::size_t passed_guessed = 0;
-      for(std::size_t i = 0; i < tets.size(); ++i) {
-        passed_guessed += guessed.add_tetrahedron(tets[i]);
-        (i < split ? half : other).add_tetrahedron(tets[i]);
-      }
-      half.merge(other);
-      CHECK(guessed.guess_held());
-      CHECK(half.guess_held());
-      CHECK(guessed.max_skewness(3) == every.max_skewness(3));
-      CHECK(guessed.min_angle_deg() == every.min_angle_deg());
-      CHECK(half.max_skewness(3) == every.max_skewness(3));
-      CHECK(half.min_angle_deg() == every.min_angle_deg());
-      guessed_passed += passed_guessed;
-      guessed_total += tets.size();
-    }
-    for(const double outset : {1e-3, 0.05}) {
-      si::Quality_extremes low, high;
-      low.guess(smallest - outset, largest - 1e-3);
-      high.guess(smallest + 1e-3, largest + outset);
-      for(const auto& t : tets) {
-        low.add_tetrahedron(t);
-        high.add_tetrahedron(t);
-      }
-      CHECK_FALSE(low.guess_held());
-      CHECK_FALSE(high.guess_held());
-    }
+    check_pass_over<3>(tets, rng() % tets.size(), passed, guessed_passed);
+    total += tets.size();
   }
   CHECK(passed > total / 2);
-  INFO("passed over: " << passed << " of " << total << " unguessed, " << guessed_passed << " of " << guessed_total
-                        << " guessed");
+  INFO("passed over: " << passed << " of " << total << " unguessed, " << guessed_passed << " guessed");
   CHECK(guessed_passed > passed * 3); // three guesses per set, each passing over at least the unguessed
+}
+
+// The interior angles of triangle p in extended precision, and twice its
+// area over its longest edge squared.
+static std::array<long double, 3> extended_triangle_angles(const std::array<P2, 3>& p, long double& shape)
+{
+  std::array<long double, 3> angles;
+  long double longest = 0, cross = 0;
+  for(int k = 0; k < 3; ++k) {
+    const P2 &a = p[std::size_t(k)], &b = p[std::size_t(k + 1) % 3], &c = p[std::size_t(k + 2) % 3];
+    const long double ux = (long double)(b[0]) - a[0], uy = (long double)(b[1]) - a[1];
+    const long double wx = (long double)(c[0]) - a[0], wy = (long double)(c[1]) - a[1];
+    cross = ux * wy - uy * wx;
+    angles[std::size_t(k)] = std::atan2(std::abs(cross), ux * wx + uy * wy);
+    longest = std::max(longest, ux * ux + uy * uy);
+  }
+  shape = std::abs(cross) / longest;
+  return angles;
+}
+
+// The 2D pass-over test: where it says every sin^2 of a triangle's interior
+// angles exceeds the bound (one bound, or one for the acute angles and one
+// for the obtuse), the angles computed in extended precision agree; on
+// well-shaped triangles with bounds 1% below their smallest sin^2 of each
+// kind it decides.
+TEST_CASE("element_sines_squared_above for triangles: certain when true, and true for well-shaped elements",
+          "[skewness][angles]")
+{
+  namespace si = spring_motion::internal;
+  std::mt19937_64 rng(20261204);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> squash(0, 3);
+  std::size_t said_true = 0, decided = 0, obtuse_ones = 0;
+  for(int trial = 0; trial < 20000; ++trial) {
+    const double f = std::pow(10.0, -2 * squash(rng));
+    std::array<P2, 3> p;
+    for(auto& q : p)
+      q = {u(rng), f * u(rng)};
+    // sizes far from 1 too: the products of lengths must not over- or underflow
+    const double size = std::pow(10.0, double(int(rng() % 41) - 20));
+    for(auto& q : p)
+      for(auto& x : q)
+        x *= size;
+    long double shape = 0;
+    const auto angles = extended_triangle_angles(p, shape);
+    long double smallest = 1, acute = 1, obtuse = 1;
+    bool has_obtuse = false;
+    for(const long double a : angles) {
+      const long double s2 = std::sin(a) * std::sin(a);
+      smallest = std::min(smallest, s2);
+      const bool is_acute = a < 1.5707963267948966192L;
+      has_obtuse = has_obtuse || !is_acute;
+      long double& m = is_acute ? acute : obtuse;
+      m = std::min(m, s2);
+    }
+    obtuse_ones += has_obtuse;
+    const bool well_shaped = shape >= 1e-5L;
+    INFO("trial " << trial << ", smallest sin^2 " << double(smallest) << ", 2A / L^2 " << double(shape));
+    check_one_bound<2>(p, smallest, well_shaped, said_true, decided);
+    for(const double factor : bound_factors) {
+      // each kind held to its own bound
+      const double ab = double(acute) * factor, ob = double(obtuse) * factor;
+      const bool kinds = si::element_sines_squared_above<2>(p, ab, ob);
+      said_true += kinds;
+      if(kinds) {
+        CHECK(acute > ab);
+        CHECK((!has_obtuse || obtuse > ob));
+      }
+      if(well_shaped && factor <= 0.99)
+        CHECK(kinds);
+    }
+    // one kind's bound 1% above its smallest sin^2: never true, whatever
+    // the other kind's (a test reading the kinds swapped would pass some)
+    if(has_obtuse) {
+      CHECK_FALSE(si::element_sines_squared_above<2>(p, double(acute) * 1.01, double(obtuse) * 0.5));
+      CHECK_FALSE(si::element_sines_squared_above<2>(p, double(acute) * 0.5, double(obtuse) * 1.01));
+    }
+  }
+  CHECK(obtuse_ones > 5000);
+  CHECK(said_true > 20000);
+  CHECK(decided > 10000);
+  // the right isosceles triangle: sin^2 1 (the dot product exactly 0) and 1/2
+  const std::array<P2, 3> corner{{{0, 0}, {1, 0}, {0, 1}}};
+  CHECK(si::element_sines_squared_above<2>(corner, 0.49));
+  CHECK_FALSE(si::element_sines_squared_above<2>(corner, 0.51));
+  CHECK(si::element_sines_squared_above<2>(corner, 0.49, 0.99));
+  CHECK_FALSE(si::element_sines_squared_above<2>(corner, 0.49, 1.0)); // a right angle is not above 1
+  // flat, coincident and non-finite corners: never passed over
+  const double inf = std::numeric_limits<double>::infinity();
+  for(const std::array<P2, 3>& bad : {std::array<P2, 3>{{{0, 0}, {1, 0}, {2, 0}}},
+                                      std::array<P2, 3>{{{0, 0}, {0, 0}, {0, 1}}},
+                                      std::array<P2, 3>{{{0, 0}, {1, 0}, {0, std::nan("")}}},
+                                      std::array<P2, 3>{{{0, 0}, {1, 0}, {0, inf}}}}) {
+    CHECK_FALSE(si::element_sines_squared_above<2>(bad, 0));
+    CHECK_FALSE(si::element_sines_squared_above<2>(bad, 0, 0));
+  }
+}
+
+// Quality_extremes::add_element on jittered lattices of triangles with a
+// needle, an obtuse triangle, a flat one among them, and copies of the
+// extreme elements moved by rounding-sized amounts: the same numbers as
+// add() of every element, bitwise, with most elements passed over, with and
+// without a guess of the extremes.
+TEST_CASE("Quality_extremes::add_element in 2D: add()'s numbers bitwise, most elements passed over",
+          "[skewness][angles]")
+{
+  namespace si = spring_motion::internal;
+  using Tri = std::array<P2, 3>;
+  std::mt19937_64 rng(202612042);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::size_t passed = 0, total = 0, guessed_passed = 0;
+  for(int set = 0; set < 40; ++set) {
+    const int n = 6 + set % 5;
+    const double jitter = set % 2 == 1 ? 0.01 : 0.05 + 0.3 * double(set % 5) / 4;
+    std::vector<P2> grid;
+    for(int y = 0; y <= n; ++y)
+      for(int x = 0; x <= n; ++x)
+        grid.push_back({x + jitter * u(rng), y + jitter * u(rng)});
+    const auto at = [&](int x, int y) { return grid[std::size_t(y * (n + 1) + x)]; };
+    std::vector<Tri> tris;
+    for(int y = 0; y < n; ++y)
+      for(int x = 0; x < n; ++x) {
+        tris.push_back({at(x, y), at(x + 1, y), at(x + 1, y + 1)});
+        tris.push_back({at(x, y), at(x + 1, y + 1), at(x, y + 1)});
+      }
+    // a needle (its smallest angle decides the minimum) or an obtuse
+    // triangle (its largest decides R), and a flat one
+    for(int i = 0; i < 2; ++i) {
+      Tri t = tris[rng() % tris.size()];
+      if(i == 0 && set % 2 == 0)
+        t[2] = {t[0][0] + 30, t[0][1] + 0.5};
+      else if(i == 0)
+        t[2] = {(t[0][0] + t[1][0]) / 2 + 0.01 * u(rng), (t[0][1] + t[1][1]) / 2 + 0.05};
+      else if(set % 10 == 3)
+        t[2] = t[0];
+      tris.insert(tris.begin() + long(rng() % tris.size()), t);
+    }
+    add_rounded_copies<2>(tris, rng);
+    INFO("set " << set << ", " << tris.size() << " elements, jitter " << jitter);
+    check_pass_over<2>(tris, rng() % tris.size(), passed, guessed_passed);
+    total += tris.size();
+  }
+  INFO("passed over: " << passed << " of " << total << " unguessed, " << guessed_passed << " guessed");
+  CHECK(passed > total / 2);
+  CHECK(guessed_passed > passed * 3);
 }

@@ -418,11 +418,11 @@ private:
     const long m = long(initial_measure_.size());
     internal::Quality_extremes all, moving;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    // 3D: the last step's extremes, moved inwards, as a guess that passes
-    // over the tetrahedra inside them (Quality_extremes::guess); a pass whose
-    // guess did not hold is made again without it, and the next guess moved
+    // the last step's extremes, moved inwards, as a guess that passes over
+    // the elements inside them (Quality_extremes::guess); a pass whose guess
+    // did not hold is made again without it, and the next guess moved
     // farther in
-    const bool guessed = D == 3 && quality_guess_.valid;
+    const bool guessed = quality_guess_.valid;
     auto pass = [&](bool guess) {
       all = moving = internal::Quality_extremes();
       lo = std::numeric_limits<double>::infinity();
@@ -436,18 +436,16 @@ private:
 #pragma omp for schedule(static) nowait
         for(long t = 0; t < m; ++t) {
           const auto p = internal::traversal_element_points<D>(slots, xt, std::size_t(t));
-          // Most elements can hold neither an extreme angle (3D: passed over
-          // by a cheap bound) nor an extreme size ratio: a measure farther than
+          // Most elements can hold neither an extreme angle (passed over by a
+          // cheap bound) nor an extreme size ratio: a measure farther than
           // 1e-12 (relative) inside the extremes so far times the initial one
           // gives a quotient inside them too, and is not divided.
           if(traversal_moving_[std::size_t(t)]) {
             const auto e = internal::element_extreme_angles<D>(p);
             my_all.add(e);
             my_moving.add(e);
-          } else if constexpr(D == 3)
-            my_all.add_tetrahedron(p);
-          else
-            my_all.add(internal::element_extreme_angles<D>(p));
+          } else
+            my_all.add_element<D>(p);
           const double measure = scaled_measure(p), initial = initial_measure_[std::size_t(t)];
           const double below = my_lo * initial, above = my_hi * initial;
           if(!(initial > 0 && measure - below > 1e-12 * std::abs(below) &&

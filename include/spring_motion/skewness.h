@@ -142,13 +142,14 @@ public:
     min_key_ = std::min(min_key_, kl);
     max_key_ = std::max(max_key_, kh);
   }
-  /// 3D: adds tetrahedron p, as add(dihedral_extreme_angles(p)) would, and
-  /// returns true when it was passed over without computing its extreme
-  /// angles: every dihedral angle lies strictly between the smallest angle
-  /// so far and the largest, so it changes neither
-  /// (dihedral_sines_squared_above). On the wing nearly all elements are
-  /// passed over.
-  bool add_tetrahedron(const std::array<std::array<double, 3>, 4>& p)
+  /// Adds the element with corners p, as add(element_extreme_angles<D>(p))
+  /// would, and returns true when it was passed over without computing its
+  /// extreme angles: every angle (2D: interior, 3D: dihedral) lies strictly
+  /// between the smallest angle so far and the largest, so it changes neither
+  /// (element_sines_squared_above). On the wing and on the 2D paper mesh
+  /// nearly all elements are passed over.
+  template <int D>
+  bool add_element(const std::array<std::array<double, D>, D + 1>& p)
   {
     const double lo = std::min(smallest_, guess_lo_), hi = std::max(r_hi_, guess_hi_);
     if(lo != bound_smallest_ || hi != bound_largest_) {
@@ -162,17 +163,17 @@ public:
       obtuse_bound_ = around_right ? std::sin(hi) * std::sin(hi) : never_passed;
     }
     if(!not_a_number_) {
-      // first the larger bound for all six angles, which on the wing passes
+      // first the larger bound for all the angles, which on the wing passes
       // nearly every element over; then the bound of each kind of angle, while
       // it passes over at least a quarter of the elements that reach it (on
       // the box most, on the wing few: there its dot products cost more than
       // they save), and every 32nd of them after, to notice a change
       const double larger = std::max(acute_bound_, obtuse_bound_);
-      bool passed = larger < 1 && dihedral_sines_squared_above(p, larger);
+      bool passed = larger < 1 && element_sines_squared_above<D>(p, larger);
       if(!passed && acute_bound_ != obtuse_bound_ && std::min(acute_bound_, obtuse_bound_) < 1 &&
          (kind_tries_ < 256 || 4 * kind_passes_ >= kind_tries_ || ++kind_skips_ % 32 == 0)) {
         ++kind_tries_;
-        passed = dihedral_sines_squared_above(p, acute_bound_, obtuse_bound_);
+        passed = element_sines_squared_above<D>(p, acute_bound_, obtuse_bound_);
         kind_passes_ += passed;
       }
       if(passed) {
@@ -180,10 +181,10 @@ public:
         return true;
       }
     }
-    add(dihedral_extreme_angles(p));
+    add(element_extreme_angles<D>(p));
     return false;
   }
-  /// Passes over, besides, the tetrahedra whose angles all lie strictly
+  /// Passes over, besides, the elements whose angles all lie strictly
   /// inside (lo, hi), a guess of the set's extremes (a motion's previous
   /// step's, moved inwards): on a structured mesh most elements share the
   /// extreme angles of its undisturbed part exactly, which no bound drawn
@@ -244,7 +245,7 @@ private:
   double min_key_ = std::numeric_limits<double>::infinity(), max_key_ = -min_key_;
   double smallest_ = min_key_;          // the smallest of the elements' smallest angles
   double r_lo_ = min_key_, r_hi_ = -r_lo_; // what R reads: min and max over both extremes
-  // add_tetrahedron's sin^2 bounds and the range they were computed from
+  // add_element's sin^2 bounds and the range they were computed from
   static constexpr double never_passed = 2; // above any sin^2 (finite: no inf * 0 for a flat element)
   static constexpr double no_guess = std::numeric_limits<double>::infinity();
   double acute_bound_ = never_passed, obtuse_bound_ = never_passed;

@@ -320,15 +320,16 @@ inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<do
 /// sin^2(theta) > `sine_squared`, that is lies strictly between alpha and
 /// pi - alpha for sin^2(alpha) = sine_squared: a test with no square root,
 /// division or trigonometry, for passing over the elements that cannot hold
-/// a set's extreme angles (Quality_extremes::add_tetrahedron). With g_i as in
+/// a set's extreme angles (Quality_extremes::add_element). With g_i as in
 /// dihedral_extreme_angles, sin^2 at the edge of length l between faces i and
 /// j is (6V)^2 l^2 / (|g_i|^2 |g_j|^2): compared by products. It answers false
 /// (decides nothing) unless the element is well conditioned, 6|V| >= 1e-6
 /// L^3 for its longest edge L, which bounds every edge below by 1e-6 L and
 /// every |g_i| below by 1e-6 L^2: the rounding errors of the products are
 /// then below 1e-9 of their values, far inside the comparison's margin of
-/// 1e-6. L^2 between 1e-60 and 1e60 (checked; a coordinate that is not
-/// finite fails it) keeps the products finite and normal.
+/// 1e-6. L^2 between 1e-60 and 1e60 (checked first; a coordinate that is
+/// infinite fails it, one that is not a number fails it or the comparisons)
+/// keeps the products finite and normal.
 ///
 /// With two bounds, an acute angle is held to `acute` and an obtuse one to
 /// `obtuse`: every angle lies strictly between alpha and pi - beta for
@@ -345,13 +346,6 @@ inline bool dihedral_sines_squared_test(const std::array<std::array<double, 3>, 
   const double ax = p[1][0] - p[0][0], ay = p[1][1] - p[0][1], az = p[1][2] - p[0][2];
   const double bx = p[2][0] - p[0][0], by = p[2][1] - p[0][1], bz = p[2][2] - p[0][2];
   const double cx = p[3][0] - p[0][0], cy = p[3][1] - p[0][1], cz = p[3][2] - p[0][2];
-  const double g1x = by * cz - bz * cy, g1y = bz * cx - bx * cz, g1z = bx * cy - by * cx;
-  const double g2x = cy * az - cz * ay, g2y = cz * ax - cx * az, g2z = cx * ay - cy * ax;
-  const double g3x = ay * bz - az * by, g3y = az * bx - ax * bz, g3z = ax * by - ay * bx;
-  const double g0x = -(g1x + g2x + g3x), g0y = -(g1y + g2y + g3y), g0z = -(g1z + g2z + g3z);
-  const double v = ax * g1x + ay * g1y + az * g1z, v2 = v * v;
-  const double f0 = g0x * g0x + g0y * g0y + g0z * g0z, f1 = g1x * g1x + g1y * g1y + g1z * g1z,
-               f2 = g2x * g2x + g2y * g2y + g2z * g2z, f3 = g3x * g3x + g3y * g3y + g3z * g3z;
   const double dx = bx - ax, dy = by - ay, dz = bz - az; // edge 12
   const double ex = cx - ax, ey = cy - ay, ez = cz - az; // edge 13
   const double hx = cx - bx, hy = cy - by, hz = cz - bz; // edge 23
@@ -360,6 +354,17 @@ inline bool dihedral_sines_squared_test(const std::array<std::array<double, 3>, 
                l03 = cx * cx + cy * cy + cz * cz, l12 = dx * dx + dy * dy + dz * dz,
                l13 = ex * ex + ey * ey + ez * ez, l23 = hx * hx + hy * hy + hz * hz;
   const double longest = std::max({l01, l02, l03, l12, l13, l23});
+  // before any product of them: out of this range they could overflow (and
+  // trap under feenableexcept)
+  if(!(longest >= 1e-60 && longest <= 1e60))
+    return false;
+  const double g1x = by * cz - bz * cy, g1y = bz * cx - bx * cz, g1z = bx * cy - by * cx;
+  const double g2x = cy * az - cz * ay, g2y = cz * ax - cx * az, g2z = cx * ay - cy * ax;
+  const double g3x = ay * bz - az * by, g3y = az * bx - ax * bz, g3z = ax * by - ay * bx;
+  const double g0x = -(g1x + g2x + g3x), g0y = -(g1y + g2y + g3y), g0z = -(g1z + g2z + g3z);
+  const double v = ax * g1x + ay * g1y + az * g1z, v2 = v * v;
+  const double f0 = g0x * g0x + g0y * g0y + g0z * g0z, f1 = g1x * g1x + g1y * g1y + g1z * g1z,
+               f2 = g2x * g2x + g2y * g2y + g2z * g2z, f3 = g3x * g3x + g3y * g3y + g3z * g3z;
   const double ta = acute * (1 + 1e-6), to = obtuse * (1 + 1e-6);
   // the bound of the angle between faces i and j
   auto bound = [&](double gix, double giy, double giz, double gjx, double gjy, double gjz) {
@@ -372,7 +377,7 @@ inline bool dihedral_sines_squared_test(const std::array<std::array<double, 3>, 
   };
   // the faces at edge k are those opposite its two other vertices
   // (Simplex_tables<3>::other); & rather than &&: no branch per edge
-  return (longest >= 1e-60) & (longest <= 1e60) & (v2 >= 1e-12 * longest * longest * longest) &
+  return (v2 >= 1e-12 * longest * longest * longest) &
          (v2 * l01 > bound(g2x, g2y, g2z, g3x, g3y, g3z) * (f2 * f3)) &
          (v2 * l02 > bound(g1x, g1y, g1z, g3x, g3y, g3z) * (f1 * f3)) &
          (v2 * l03 > bound(g1x, g1y, g1z, g2x, g2y, g2z) * (f1 * f2)) &
@@ -381,14 +386,66 @@ inline bool dihedral_sines_squared_test(const std::array<std::array<double, 3>, 
          (v2 * l23 > bound(g0x, g0y, g0z, g1x, g1y, g1z) * (f0 * f1));
 }
 
-inline bool dihedral_sines_squared_above(const std::array<std::array<double, 3>, 4>& p, double sine_squared)
+/// The same test for the interior angles of triangle p: sin^2 of the angle
+/// between the edges u and w leaving a vertex is (u x w)^2 / (|u|^2 |w|^2),
+/// compared by products, and the angle is acute where u . w > 0. It decides
+/// nothing (answers false) unless |u x w| >= 1e-6 L^2 for the longest edge
+/// L, which bounds every edge below by 1e-6 L (twice the area is at most an
+/// edge times L): the cross product's rounding error, at most a few ulps of
+/// |u| |w| <= L^2, is then below 1e-9 of its value, as are the other
+/// products', far inside the comparison's margin of 1e-6. L^2 between 1e-60
+/// and 1e60 (checked first) keeps the products finite and normal.
+template <bool Kinds>
+inline bool triangle_sines_squared_test(const std::array<std::array<double, 2>, 3>& p, double acute, double obtuse)
 {
-  return dihedral_sines_squared_test<false>(p, sine_squared, sine_squared);
+  const double ax = p[1][0] - p[0][0], ay = p[1][1] - p[0][1]; // edge 01
+  const double bx = p[2][0] - p[0][0], by = p[2][1] - p[0][1]; // edge 02
+  const double dx = bx - ax, dy = by - ay;                     // edge 12
+  const double l01 = ax * ax + ay * ay, l02 = bx * bx + by * by, l12 = dx * dx + dy * dy;
+  const double longest = std::max({l01, l02, l12});
+  // before any product of them: out of this range they could overflow (and
+  // trap under feenableexcept)
+  if(!(longest >= 1e-60 && longest <= 1e60))
+    return false;
+  const double z = ax * by - ay * bx, z2 = z * z;
+  const double ta = acute * (1 + 1e-6), to = obtuse * (1 + 1e-6);
+  // the bound of the angle whose edges have dot product `d`
+  auto bound = [&](double d) {
+    if constexpr(Kinds)
+      return d > 0 ? ta : to;
+    else {
+      (void)d, (void)to;
+      return ta;
+    }
+  };
+  // vertex 0 between edges 01 and 02, vertex 1 between 10 and 12, vertex 2
+  // between 20 and 21; & rather than &&: no branch per vertex
+  return (z2 >= 1e-12 * longest * longest) & (z2 > bound(ax * bx + ay * by) * (l01 * l02)) &
+         (z2 > bound(-(ax * dx + ay * dy)) * (l01 * l12)) & (z2 > bound(bx * dx + by * dy) * (l02 * l12));
 }
 
-inline bool dihedral_sines_squared_above(const std::array<std::array<double, 3>, 4>& p, double acute, double obtuse)
+/// Whether every angle of the element with corners p (3D: dihedral, 2D:
+/// interior) certainly has sin^2 above `sine_squared`
+/// (dihedral_sines_squared_test, triangle_sines_squared_test).
+template <int D>
+inline bool element_sines_squared_above(const std::array<std::array<double, D>, D + 1>& p, double sine_squared)
 {
-  return dihedral_sines_squared_test<true>(p, acute, obtuse);
+  if constexpr(D == 2)
+    return triangle_sines_squared_test<false>(p, sine_squared, sine_squared);
+  else
+    return dihedral_sines_squared_test<false>(p, sine_squared, sine_squared);
+}
+
+/// The same with the acute angles held to `acute` and the obtuse ones to
+/// `obtuse`.
+template <int D>
+inline bool element_sines_squared_above(const std::array<std::array<double, D>, D + 1>& p, double acute,
+                                        double obtuse)
+{
+  if constexpr(D == 2)
+    return triangle_sines_squared_test<true>(p, acute, obtuse);
+  else
+    return dihedral_sines_squared_test<true>(p, acute, obtuse);
 }
 
 /// 1/sin^2 of the triangle's angle at each vertex, as triangle_angles

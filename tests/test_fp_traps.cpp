@@ -250,8 +250,9 @@ TEST_CASE("fp traps: the tetrahedra's 1/sin^2, one and two at once, on flat and 
 TEST_CASE("fp traps: the per-step quality's pass-over test on tiny, huge and degenerate elements", "[fp]")
 {
   // Scales from 1e-150 to 1e100: the test's products of squared lengths
-  // and areas or volumes would overflow above about 1e30; it must answer
-  // false there (decide nothing) without forming them.
+  // and areas or volumes (eighth powers of the coordinates in 3D) would
+  // overflow above about 1e38; out of its range it must answer false
+  // (decide nothing) without forming them.
   Fp_traps traps;
   REQUIRE((fegetexcept() & trapped) == trapped);
   const std::array<std::array<double, 2>, 3> triangles[] = {{{{0, 0}, {1, 0}, {0, 1}}},  // right isosceles

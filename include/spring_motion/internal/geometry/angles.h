@@ -354,17 +354,18 @@ inline bool dihedral_sines_squared_test(const std::array<std::array<double, 3>, 
                l03 = cx * cx + cy * cy + cz * cz, l12 = dx * dx + dy * dy + dz * dz,
                l13 = ex * ex + ey * ey + ez * ez, l23 = hx * hx + hy * hy + hz * hz;
   const double longest = std::max({l01, l02, l03, l12, l13, l23});
-  // before any product of them: out of this range they could overflow (and
-  // trap under feenableexcept)
-  if(!(longest >= 1e-60 && longest <= 1e60))
-    return false;
   const double g1x = by * cz - bz * cy, g1y = bz * cx - bx * cz, g1z = bx * cy - by * cx;
   const double g2x = cy * az - cz * ay, g2y = cz * ax - cx * az, g2z = cx * ay - cy * ax;
   const double g3x = ay * bz - az * by, g3y = az * bx - ax * bz, g3z = ax * by - ay * bx;
   const double g0x = -(g1x + g2x + g3x), g0y = -(g1y + g2y + g3y), g0z = -(g1z + g2z + g3z);
-  const double v = ax * g1x + ay * g1y + az * g1z, v2 = v * v;
+  const double v = ax * g1x + ay * g1y + az * g1z;
   const double f0 = g0x * g0x + g0y * g0y + g0z * g0z, f1 = g1x * g1x + g1y * g1y + g1z * g1z,
                f2 = g2x * g2x + g2y * g2y + g2z * g2z, f3 = g3x * g3x + g3y * g3y + g3z * g3z;
+  // before the products of sixth and eighth powers: out of this range they
+  // could overflow (and trap under feenableexcept)
+  if(!(longest >= 1e-60 && longest <= 1e60))
+    return false;
+  const double v2 = v * v;
   const double ta = acute * (1 + 1e-6), to = obtuse * (1 + 1e-6);
   // the bound of the angle between faces i and j
   auto bound = [&](double gix, double giy, double giz, double gjx, double gjy, double gjz) {

@@ -327,9 +327,10 @@ inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<do
 /// L^3 for its longest edge L, which bounds every edge below by 1e-6 L and
 /// every |g_i| below by 1e-6 L^2: the rounding errors of the products are
 /// then below 1e-9 of their values, far inside the comparison's margin of
-/// 1e-6. L^2 between 1e-60 and 1e60 (checked first; a coordinate that is
-/// infinite fails it, one that is not a number fails it or the comparisons)
-/// keeps the products finite and normal.
+/// 1e-6. L^2 between 1e-60 and 1e60 (checked before the products of sixth
+/// and eighth powers; a coordinate that is infinite fails it, one that is
+/// not a number fails it or the comparisons) keeps the products finite and
+/// normal.
 ///
 /// With two bounds, an acute angle is held to `acute` and an obtuse one to
 /// `obtuse`: every angle lies strictly between alpha and pi - beta for

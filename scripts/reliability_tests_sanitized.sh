@@ -5,5 +5,5 @@
 #
 #   scripts/reliability_tests_sanitized.sh
 set -euo pipefail
-exec "$(dirname "$0")/test_sanitized.sh" test_api_misuse test_fp_traps test_substepping test_determinism \
+exec "$(dirname "$0")/test_sanitized.sh" test_api_misuse test_fp_traps test_fp_traps_source_order test_substepping test_determinism \
   test_fuzz_regressions

@@ -9,6 +9,7 @@
 #include <spring_motion/internal/geometry/angles.h>
 #include <spring_motion/stiffness/model_by_name.h>
 
+#include "fp_traps.h"
 #include "test_meshes.h"
 
 #include <catch2/catch.hpp>
@@ -17,38 +18,11 @@
 #include <cmath>
 #include <limits>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 using namespace spring_motion;
+using spring_motion_test::Fp_traps;
+using spring_motion_test::trapped;
 
 namespace {
-
-constexpr int trapped = FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW;
-
-// Enables the traps in this thread and in every OpenMP worker (the trap mask
-// is per thread), and clears them again at the end of the test.
-struct Fp_traps
-{
-  Fp_traps() { set(true); }
-  ~Fp_traps() { set(false); }
-  static void set(bool on)
-  {
-    auto apply = [on] {
-      std::feclearexcept(FE_ALL_EXCEPT);
-      if(on)
-        feenableexcept(trapped);
-      else
-        fedisableexcept(trapped);
-    };
-    apply();
-#ifdef _OPENMP
-#pragma omp parallel
-    apply();
-#endif
-  }
-};
 
 template <int D>
 bool all_valid(const Spring_network<D>& net, const std::vector<typename Spring_network<D>::Point>& x,
@@ -245,39 +219,4 @@ TEST_CASE("fp traps: the tetrahedra's 1/sin^2, one and two at once, on flat and 
         CHECK(both[0][k] <= 1e200);
       }
     }
-}
-
-TEST_CASE("fp traps: the per-step quality's pass-over test on tiny, huge and degenerate elements", "[fp]")
-{
-  // Scales from 1e-150 to 1e100: the test's products of squared lengths
-  // and areas or volumes (eighth powers of the coordinates in 3D) would
-  // overflow above about 1e38; out of its range it must answer false
-  // (decide nothing) without forming them.
-  Fp_traps traps;
-  REQUIRE((fegetexcept() & trapped) == trapped);
-  const std::array<std::array<double, 2>, 3> triangles[] = {{{{0, 0}, {1, 0}, {0, 1}}},  // right isosceles
-                                                            {{{0, 0}, {1, 0}, {2, 0}}},  // flat
-                                                            {{{0, 0}, {0, 0}, {0, 0}}}}; // a point
-  const std::array<std::array<double, 3>, 4> tetrahedra[] = {{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}},
-                                                             {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}},
-                                                             {{{2, 2, 2}, {2, 2, 2}, {2, 2, 2}, {2, 2, 2}}}};
-  for(const double scale : {1e-150, 1e-40, 1e-20, 1.0, 1e20, 1e40, 1e100}) {
-    INFO("scale " << scale);
-    // well shaped and within the range: decided; else never passed over
-    const bool decidable = scale >= 1e-20 && scale <= 1e20;
-    for(std::size_t s = 0; s < 3; ++s) {
-      auto t = triangles[s];
-      for(auto& q : t)
-        for(auto& x : q)
-          x *= scale;
-      CHECK(internal::element_sines_squared_above<2>(t, 0.4) == (decidable && s == 0));
-      CHECK(internal::element_sines_squared_above<2>(t, 0.4, 0.9) == (decidable && s == 0));
-      auto p = tetrahedra[s];
-      for(auto& q : p)
-        for(auto& x : q)
-          x *= scale;
-      CHECK(internal::element_sines_squared_above<3>(p, 0.6) == (decidable && s == 0));
-      CHECK(internal::element_sines_squared_above<3>(p, 0.6, 0.9) == (decidable && s == 0));
-    }
-  }
 }

@@ -327,10 +327,10 @@ inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<do
 /// L^3 for its longest edge L, which bounds every edge below by 1e-6 L and
 /// every |g_i| below by 1e-6 L^2: the rounding errors of the products are
 /// then below 1e-9 of their values, far inside the comparison's margin of
-/// 1e-6. L^2 between 1e-60 and 1e60 (checked before the products of sixth
-/// and eighth powers; a coordinate that is infinite fails it, one that is
-/// not a number fails it or the comparisons) keeps the products finite and
-/// normal.
+/// 1e-6. L^2 between 1e-60 and 1e60 (checked before any product of the
+/// squared lengths or the edges' cross products; a coordinate that is
+/// infinite fails it, one that is not a number fails it or the comparisons)
+/// keeps the products finite and normal.
 ///
 /// With two bounds, an acute angle is held to `acute` and an obtuse one to
 /// `obtuse`: every angle lies strictly between alpha and pi - beta for
@@ -355,6 +355,12 @@ inline bool dihedral_sines_squared_test(const std::array<std::array<double, 3>, 
                l03 = cx * cx + cy * cy + cz * cz, l12 = dx * dx + dy * dy + dz * dz,
                l13 = ex * ex + ey * ey + ez * ez, l23 = hx * hx + hy * hy + hz * hz;
   const double longest = std::max({l01, l02, l03, l12, l13, l23});
+  // before any product of the squared lengths or the edges' cross products:
+  // out of this range the normals' squares (fourth powers of the
+  // coordinates) and the products of sixth and eighth powers could overflow
+  // (and trap under feenableexcept)
+  if(!(longest >= 1e-60 && longest <= 1e60))
+    return false;
   const double g1x = by * cz - bz * cy, g1y = bz * cx - bx * cz, g1z = bx * cy - by * cx;
   const double g2x = cy * az - cz * ay, g2y = cz * ax - cx * az, g2z = cx * ay - cy * ax;
   const double g3x = ay * bz - az * by, g3y = az * bx - ax * bz, g3z = ax * by - ay * bx;
@@ -362,10 +368,6 @@ inline bool dihedral_sines_squared_test(const std::array<std::array<double, 3>, 
   const double v = ax * g1x + ay * g1y + az * g1z;
   const double f0 = g0x * g0x + g0y * g0y + g0z * g0z, f1 = g1x * g1x + g1y * g1y + g1z * g1z,
                f2 = g2x * g2x + g2y * g2y + g2z * g2z, f3 = g3x * g3x + g3y * g3y + g3z * g3z;
-  // before the products of sixth and eighth powers: out of this range they
-  // could overflow (and trap under feenableexcept)
-  if(!(longest >= 1e-60 && longest <= 1e60))
-    return false;
   const double v2 = v * v;
   const double ta = acute * (1 + 1e-6), to = obtuse * (1 + 1e-6);
   // the bound of the angle between faces i and j

@@ -38,17 +38,17 @@ TEST_CASE("fp traps: the per-step quality's pass-over test on tiny, huge and deg
     INFO("scale " << scale);
     // well shaped and within the range: decided; else never passed over
     const bool decidable = scale >= 1e-20 && scale <= 1e20;
-    for(std::size_t s = 0; s < 3; ++s) {
-      auto t = triangles[s];
-      for(auto& q : t)
+    const auto scaled = [scale](auto corners) {
+      for(auto& q : corners)
         for(auto& x : q)
           x *= scale;
+      return corners;
+    };
+    for(std::size_t s = 0; s < 3; ++s) {
+      const auto t = scaled(triangles[s]);
       CHECK(internal::element_sines_squared_above<2>(t, 0.4) == (decidable && s == 0));
       CHECK(internal::element_sines_squared_above<2>(t, 0.4, 0.9) == (decidable && s == 0));
-      auto p = tetrahedra[s];
-      for(auto& q : p)
-        for(auto& x : q)
-          x *= scale;
+      const auto p = scaled(tetrahedra[s]);
       CHECK(internal::element_sines_squared_above<3>(p, 0.6) == (decidable && s == 0));
       CHECK(internal::element_sines_squared_above<3>(p, 0.6, 0.9) == (decidable && s == 0));
     }

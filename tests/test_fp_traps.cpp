@@ -170,6 +170,48 @@ TEST_CASE("fp traps: tiny and huge meshes, every 2D model", "[fp]")
   }
 }
 
+TEST_CASE("fp traps: tiny and huge meshes, every 3D model", "[fp]")
+{
+  // The 2D test's scales on Kuhn tetrahedra: every model, the per-step
+  // quality and the exact checks; a run moves its vertex validly or stops
+  // with an Error, nothing traps.
+  const auto unit = kuhn_grid(3);
+  for(double scale : {1e-300, 1e-200, 1e-150, 1e-100, 1e-8, 1e8, 1e100}) {
+    auto mesh = unit;
+    for(auto& p : mesh.points)
+      for(auto& x : p)
+        x *= scale;
+    const auto net = make_spring_network<3>(mesh.points, mesh.elements);
+    // vertex (1, 1, 1) moves, the other interior vertices are free
+    const auto roles = assign_roles(net, [](const Vertex_info<3>& v) {
+      if(v.on_boundary)
+        return Vertex_role::fixed;
+      return v.index == (1 * 4 + 1) * 4 + 1 ? Vertex_role::moving : Vertex_role::free;
+    });
+    Fp_traps traps;
+    Deform_options options;
+    options.number_of_steps = 4;
+    options.solver.tolerance = 1e-6 * scale;
+    const Translation_motion<3> motion{{0.2 * scale, 0.1 * scale, -0.15 * scale}};
+    for(const auto& name : model_names()) {
+      INFO("model " << name << ", scale " << scale);
+      try {
+        run_model<3>(name, net, roles, motion, options);
+      } catch(const Error& e) {
+        SUCCEED("refused: " << e.what());
+      }
+    }
+    INFO("Zeng-Ethier on dihedral angles, scale " << scale);
+    try {
+      Network_deformer<3> dihedral(net, roles);
+      dihedral.run(motion, Zeng_Ethier_semi_torsional_stiffness{Angle_kind::element}, options);
+      CHECK(all_valid(net, dihedral.positions(), dihedral.orientation_record()));
+    } catch(const Error& e) {
+      SUCCEED("refused: " << e.what());
+    }
+  }
+}
+
 TEST_CASE("fp traps: models at angles of 0 and pi and at extreme lengths", "[fp]")
 {
   Fp_traps traps;

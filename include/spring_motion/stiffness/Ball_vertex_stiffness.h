@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 namespace spring_motion {
 
@@ -275,6 +276,11 @@ private:
   // springs (up to 1/l^2): its determinant, a product of D such entries,
   // stays finite for edges longer than ~1e-50, as with torsional springs.
   static constexpr double min_squared_edge = 1e-100;
+  // In 3D the facet normals' products (N_i . N_j) are fourth powers of the
+  // lengths, which overflow for edges beyond ~1e77: 3D edges must be
+  // shorter than 1e50 (in 2D they are squares, no bound needed).
+  template <int D>
+  static constexpr double max_squared_edge = D == 3 ? 1e100 : std::numeric_limits<double>::infinity();
 
   // p of k = weight / h^p when it is 1, 2 or 3 (the products blocks() forms
   // without a power function), else 0
@@ -356,8 +362,10 @@ private:
   {
     constexpr int S = D * (D + 1) / 2;
     for(const double ee : squared_edges<D>(p))
-      SPRING_MOTION_CHECK(ee >= min_squared_edge, "ball-vertex springs need edges longer than 1e-50 (found one of "
-                                                  "squared length " << ee << "): scale the mesh");
+      SPRING_MOTION_CHECK(ee >= min_squared_edge && ee <= max_squared_edge<D>,
+                          "ball-vertex springs need edges longer than 1e-50" << (D == 3 ? " and shorter than 1e50" : "")
+                                                                             << " (found one of squared length " << ee
+                                                                             << "): scale the mesh");
     const auto facets = facet_normals(p);
     const auto& N = facets.normal;
     const auto G = gram<D>(N);
@@ -441,7 +449,8 @@ private:
         for(std::size_t l = 0; l < L; ++l)
           p[v][c][l] = (*q[l])[v][c];
     for(const T ee : squared_edges<D>(p)) {
-      const auto fits = ee >= internal::lanes_of<T>(min_squared_edge);
+      const auto fits =
+          (ee >= internal::lanes_of<T>(min_squared_edge)) & (ee <= internal::lanes_of<T>(max_squared_edge<D>));
       for(std::size_t l = 0; l < L; ++l)
         if(!fits[l])
           return false;

@@ -167,13 +167,17 @@ struct Torsional_stiffness
   /// g the angle's gradient with j's part shared out to the edge's ends.
   void add_element_matrix(const std::array<std::array<double, 3>, 4>& p, double* K) const
   {
-    // as in 2D: g grows like 1/length and C is at most 1e200
+    // as in 2D: g grows like 1/length and C is at most 1e200; and the
+    // torsion triangles' construction forms fourth powers of the lengths
+    // (a face normal's cross product with an edge, dotted with an edge),
+    // which overflow for edges beyond ~1e77
     for(int a = 0; a < 4; ++a)
       for(int b = a + 1; b < 4; ++b) {
         const auto e = internal::sub<3>(p[b], p[a]);
         const double ee = internal::dot<3>(e, e);
-        SPRING_MOTION_CHECK(ee >= 1e-100, "the torsional model needs edges longer than 1e-50 (found one of squared length "
-                                              << ee << "): scale the mesh");
+        SPRING_MOTION_CHECK(ee >= 1e-100 && ee <= 1e100,
+                            "the torsional model in 3D needs edges between 1e-50 and 1e50 long (found one of squared "
+                            "length " << ee << "): scale the mesh");
       }
     // The 36 angles' C and gradients first, then each entry of K summed over
     // them in that order: the products and sums of adding C g g^T angle by

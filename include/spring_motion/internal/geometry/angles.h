@@ -199,16 +199,23 @@ inline std::array<double, 2> triangle_angle_range(const std::array<double, N>& p
 
 /// The projections u, w of tetrahedron p's two vertices off its local edge k
 /// onto the plane orthogonal to that edge: the dihedral angle at the edge is
-/// the angle between them.
+/// the angle between them. `scale` multiplies the edge vectors (a power of
+/// two, exact: see dihedral_angles).
 inline void dihedral_projections(const std::array<std::array<double, 3>, 4>& p, int k, std::array<double, 3>& u,
-                                 std::array<double, 3>& w)
+                                 std::array<double, 3>& w, double scale = 1)
 {
   using T = Simplex_tables<3>;
   const auto& a = p[T::edge[k][0]];
-  const auto e = sub<3>(p[T::edge[k][1]], a);
-  const double ee = dot<3>(e, e);
+  auto e = sub<3>(p[T::edge[k][1]], a);
   u = sub<3>(p[T::other[k][0]], a);
   w = sub<3>(p[T::other[k][1]], a);
+  if(scale != 1)
+    for(int c = 0; c < 3; ++c) {
+      e[c] *= scale;
+      u[c] *= scale;
+      w[c] *= scale;
+    }
+  const double ee = dot<3>(e, e);
   const double su = dot<3>(u, e) / ee, sw = dot<3>(w, e) / ee;
   for(int c = 0; c < 3; ++c) {
     u[c] -= su * e[c];
@@ -218,13 +225,26 @@ inline void dihedral_projections(const std::array<std::array<double, 3>, 4>& p, 
 
 /// Interior dihedral angles of tetrahedron p at its six edges, in the local
 /// edge order of Simplex_tables<3>: the angle between the projections of the
-/// two other vertices onto the plane orthogonal to the edge.
+/// two other vertices onto the plane orthogonal to the edge. The angles do
+/// not depend on the size, but the products do: the angle between u and w
+/// forms fourth powers of the lengths, which leave the normal numbers for
+/// edges below ~2^-255 (and 0 / 0 follows once the squares underflow) or
+/// overflow above ~2^255. A tetrahedron whose edge vectors from vertex 0
+/// reach outside [2^-200, 2^200] is scaled by a power of two to size about
+/// 1 first, which rounds nothing; within that range nothing is scaled.
 inline std::array<double, 6> dihedral_angles(const std::array<std::array<double, 3>, 4>& p)
 {
+  double extent = 0;
+  for(int i = 1; i < 4; ++i)
+    for(int c = 0; c < 3; ++c)
+      extent = std::max(extent, std::abs(p[i][c] - p[0][c]));
+  const double scale = extent > 0 && std::isfinite(extent) && !(extent >= 0x1p-200 && extent <= 0x1p200)
+                           ? std::ldexp(1.0, -std::ilogb(extent))
+                           : 1.0;
   std::array<double, 6> out;
   std::array<double, 3> u, w;
   for(int k = 0; k < 6; ++k) {
-    dihedral_projections(p, k, u, w);
+    dihedral_projections(p, k, u, w, scale);
     out[std::size_t(k)] = angle_between(u, w);
   }
   return out;

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <random>
 #include <vector>
 
 using namespace spring_motion;
@@ -50,6 +51,32 @@ TEST_CASE("3D angles: dihedral angles of the trirectangular corner, in local edg
     CHECK(std::abs(a[k] - M_PI / 2) < angle_tolerance);
   for(int k = 3; k < 6; ++k)
     CHECK(std::abs(a[k] - std::acos(1 / std::sqrt(3.0))) < angle_tolerance);
+}
+
+TEST_CASE("3D angles: dihedral angles of tetrahedra scaled by powers of two are the same bits", "[angles][3d]")
+{
+  // Scaling by 2^k rounds nothing, so the angles must not change at all:
+  // at 2^-1000 the squared edges underflow and at 2^1000 the products
+  // overflow unless the function rescales first (dihedral_angles).
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-1, 1);
+  for(int t = 0; t < 200; ++t) {
+    std::array<P3, 4> p;
+    for(auto& q : p)
+      for(auto& x : q)
+        x = coordinate(random);
+    const auto reference = internal::dihedral_angles(p);
+    for(const int k : {-1000, -700, -300, 300, 700, 1000}) {
+      INFO("tetrahedron " << t << " scaled by 2^" << k);
+      auto scaled = p;
+      for(auto& q : scaled)
+        for(auto& x : q)
+          x = std::ldexp(x, k);
+      const auto a = internal::dihedral_angles(scaled);
+      for(std::size_t e = 0; e < 6; ++e)
+        CHECK(a[e] == reference[e]);
+    }
+  }
 }
 
 TEST_CASE("3D skewness: R from the six dihedral angles with Q_e = arccos(1/3)", "[skewness][3d]")

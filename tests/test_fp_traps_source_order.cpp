@@ -5,7 +5,7 @@
 // moved products that overflow below the branch that skips them, and the
 // same test passed in the optimised suite while the function trapped when
 // built on its own at -O2 or in a debug build. The traps are those of
-// tests/test_fp_traps.cpp.
+// tests/test_fp_traps.cpp (tests/fp_traps.h).
 #include <spring_motion/internal/geometry/angles.h>
 
 #include "fp_traps.h"

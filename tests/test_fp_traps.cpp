@@ -46,35 +46,6 @@ bool run_model(const std::string& model_name, const Spring_network<D>& net, cons
   return report.completed;
 }
 
-// A 3D grid of n^3 unit cubes, each split into Kuhn's six tetrahedra; the
-// interior vertices jittered deterministically so the angles differ.
-Indexed_mesh<3> kuhn_grid(int n)
-{
-  Indexed_mesh<3> m;
-  const int nv = n + 1;
-  auto id = [nv](int i, int j, int k) { return std::uint32_t((k * nv + j) * nv + i); };
-  for(int k = 0; k < nv; ++k)
-    for(int j = 0; j < nv; ++j)
-      for(int i = 0; i < nv; ++i) {
-        std::array<double, 3> p{double(i), double(j), double(k)};
-        if(i > 0 && i < n && j > 0 && j < n && k > 0 && k < n)
-          for(int c = 0; c < 3; ++c)
-            p[c] += 0.2 * std::sin(1.7 * (i + 2 * j + 3 * k) + c);
-        m.points.push_back(p);
-      }
-  const int perm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for(int k = 0; k < n; ++k)
-    for(int j = 0; j < n; ++j)
-      for(int i = 0; i < n; ++i) {
-        auto corner = [&](unsigned b) { return id(i + (b & 1), j + ((b >> 1) & 1), k + ((b >> 2) & 1)); };
-        for(const auto& p : perm) {
-          const unsigned a = 1u << p[0], b = a | (1u << p[1]);
-          m.elements.push_back({corner(0), corner(a), corner(b), corner(7)});
-        }
-      }
-  return m;
-}
-
 } // namespace
 
 TEST_CASE("fp traps: every 2D model on an annulus rotated until it fails", "[fp]")
@@ -113,7 +84,7 @@ TEST_CASE("fp traps: every 2D model on the NACA0012 pitch beyond its limit", "[f
 
 TEST_CASE("fp traps: every 3D model on a sheared grid of tetrahedra", "[fp]")
 {
-  const auto mesh = kuhn_grid(3);
+  const auto mesh = spring_motion_test::kuhn_grid<3>(3, 0.2);
   const auto net = make_spring_network<3>(mesh.points, mesh.elements);
   // top face moving, bottom face and sides fixed
   const auto roles = assign_roles(net, [](const Vertex_info<3>& v) {
@@ -175,7 +146,7 @@ TEST_CASE("fp traps: tiny and huge meshes, every 3D model", "[fp]")
   // The 2D test's scales on Kuhn tetrahedra: every model, the per-step
   // quality and the exact checks; a run moves its vertex validly or stops
   // with an Error, nothing traps.
-  const auto unit = kuhn_grid(3);
+  const auto unit = spring_motion_test::kuhn_grid<3>(3, 0.2);
   for(double scale : {1e-300, 1e-200, 1e-150, 1e-100, 1e-8, 1e8, 1e100}) {
     auto mesh = unit;
     for(auto& p : mesh.points)

@@ -1010,7 +1010,7 @@ private:
     if(pc.cycle && report.converged)
       refresh_.record(report.iterations);
     // A converged solve reports the residual its recurrence carries, b - A x
-    // up to the rounding of a few updates (about 1e-11 of it on the wing),
+    // up to the rounding of a few updates (within 3e-9 of it on the wing),
     // rather than one more product with the matrix: that product cost 6% of
     // a ball-vertex solve on the wing. A solve that did not converge, or
     // whose recurrence vanished, recomputes it.

@@ -428,7 +428,7 @@ bool add_element_matrices_of_four(const std::array<std::array<std::array<double,
                                      {K[0].data(), K[1].data(), K[2].data(), K[3].data()}))
     return false;
   for(std::size_t l = 0; l < 4; ++l)
-    if(finite_or_kept(K[l], element[l], first_bad, error))
+    if(all_finite_four_lanes(K[l]) || keep_not_finite(K[l], element[l], first_bad, error))
       scatter_element_values<D, Model>(K[l], to + l * (D + 1) * (D + 1), blocks);
   return true;
 }

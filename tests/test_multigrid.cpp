@@ -8,6 +8,9 @@
 // symmetric and positive semi-definite, which conjugate gradients need of a
 // preconditioner. That the preconditioned solver reaches the direct solution
 // is in test_solver.cpp.
+// Loops of any size take the parallel path where two threads are asked for,
+// so that the small systems here exercise it.
+#define SPRING_MOTION_PARALLEL_THRESHOLD 1
 #include <spring_motion/spring_motion.h>
 #include <spring_motion/internal/solver/aggregation_multigrid.h>
 #include <spring_motion/internal/solver/aggregation_refresh.h>
@@ -20,6 +23,7 @@
 #include <Eigen/Sparse>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -522,6 +526,95 @@ TEST_CASE("rigid-body multigrid: the blockwise Galerkin product of a block equal
   SECTION("2D, coarse block") { check_galerkin_by_blocks<2, 3>(); }
   SECTION("3D, fine block") { check_galerkin_by_blocks<3, 3>(); }
   SECTION("3D, coarse block") { check_galerkin_by_blocks<3, 6>(); }
+}
+
+// Each level's matrix against the dense Galerkin product of the level above
+// it (the fine matrix for level 0), the offsets from the levels' centres,
+// and its entries (b, a) the exact transposes of its (a, b); on two threads
+// (the aggregates shared out) the bits of one (the finer rows in order)
+TEST_CASE("rigid-body multigrid: in 3D every level is the Galerkin product of the level above, exactly symmetric",
+          "[solver][multigrid]")
+{
+  constexpr int R = 6;
+  const Laplacian A = kuhn_grid_system(true);
+  const auto mesh = kuhn_grid<3>(12);
+  const auto points = free_points(make_spring_network<3>(mesh.points, mesh.elements));
+  REQUIRE(points.size() == A.rows());
+  Rigid_body_multigrid<3> mg;
+  mg.parameters.coarsest_rows = 8; // a coarse level below level 0
+  mg.build(A.view(), points.data());
+  mg.load(A.view(), points.data());
+  REQUIRE(mg.number_of_levels() >= 2);
+  for(std::size_t l = 0; l < mg.number_of_levels(); ++l) {
+    INFO("level " << l << ", " << mg.rows(l) << " rows");
+    // the level above: its pattern, blocks (F x F) and positions
+    const bool fine = l == 0;
+    const int F = fine ? 3 : R;
+    const std::vector<Index>& off = fine ? A.offsets : mg.offsets(l - 1);
+    const std::vector<Index>& col = fine ? A.col : mg.columns(l - 1);
+    const std::vector<double>& val = fine ? A.values : mg.values(l - 1);
+    const std::vector<double>& dia = fine ? A.diag : mg.diagonal(l - 1);
+    const std::size_t n = off.size() - 1;
+    auto offset = [&](std::size_t i) {
+      const auto& c = mg.centre(l, mg.parent(l, i));
+      const auto& p = fine ? points[i] : mg.centre(l - 1, Index(i));
+      return std::array<double, 3>{p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+    };
+    std::map<std::pair<Index, Index>, std::vector<double>> expected;
+    auto add = [&](std::size_t i, std::size_t j, const double* block) {
+      const std::vector<double> a(block, block + F * F);
+      const auto C = fine ? dense_rigid_galerkin<3, 3>(a, offset(i), offset(j))
+                          : dense_rigid_galerkin<3, R>(a, offset(i), offset(j));
+      auto& e = expected[{mg.parent(l, i), mg.parent(l, j)}];
+      e.resize(R * R, 0.0);
+      for(std::size_t k = 0; k < C.size(); ++k)
+        e[k] += C[k];
+    };
+    for(std::size_t i = 0; i < n; ++i) {
+      add(i, i, &dia[i * std::size_t(F * F)]);
+      for(Index q = off[i]; q < off[i + 1]; ++q)
+        add(i, col[q], &val[std::size_t(q) * std::size_t(F * F)]);
+    }
+    double worst = 0;
+    auto compare = [&](const double* got, const std::vector<double>& e) {
+      double scale = 0;
+      for(double v : e)
+        scale = std::max(scale, std::abs(v));
+      for(std::size_t k = 0; k < R * R; ++k)
+        worst = std::max(worst, std::abs(got[k] - e[k]) / scale);
+    };
+    const auto& o = mg.offsets(l);
+    const auto& c = mg.columns(l);
+    const auto& v = mg.values(l);
+    std::size_t entries = 0, asymmetric = 0;
+    for(std::size_t a = 0; a < mg.rows(l); ++a) {
+      compare(&mg.diagonal(l)[a * R * R], expected.at({Index(a), Index(a)}));
+      ++entries;
+      for(Index q = o[a]; q < o[a + 1]; ++q, ++entries) {
+        compare(&v[q * R * R], expected.at({Index(a), c[q]}));
+        // the entry (b, a)
+        const Index b = c[q];
+        const auto t = std::find(c.begin() + o[b], c.begin() + o[b + 1], Index(a));
+        REQUIRE(t != c.begin() + o[b + 1]);
+        const double* vt = &v[std::size_t(t - c.begin()) * R * R];
+        for(int r = 0; r < R; ++r)
+          for(int k = 0; k < R; ++k)
+            asymmetric += v[q * R * R + std::size_t(r * R + k)] != vt[k * R + r]; // bits
+      }
+    }
+    CHECK(entries == expected.size());
+    CHECK(worst < 1e-12);
+    CHECK(asymmetric == 0);
+  }
+  Rigid_body_multigrid<3> two;
+  two.parameters.coarsest_rows = 8;
+  two.build(A.view(), points.data(), 2);
+  two.load(A.view(), points.data(), 2);
+  REQUIRE(two.number_of_levels() == mg.number_of_levels());
+  for(std::size_t l = 0; l < mg.number_of_levels(); ++l) {
+    CHECK(two.values(l) == mg.values(l)); // bits
+    CHECK(two.diagonal(l) == mg.diagonal(l));
+  }
 }
 
 TEST_CASE("rigid-body multigrid: with the coarsest level solved exactly, the coarse correction reproduces every "

@@ -127,6 +127,7 @@ public:
       L.slot_of = std::move(g.slot_of);
       L.offsets = std::move(g.offsets);
       L.col = std::move(g.col);
+      L.transposed = transposed_entries(L.offsets, L.col);
       L.values.resize(L.col.size() * RR);
       L.diag.resize(L.n * RR);
       L.inv_diag.resize(L.n * RR);
@@ -282,6 +283,7 @@ private:
     std::vector<Index> parent_of;               // finer unknown -> aggregate
     std::vector<Index> slot_of;                 // finer off-diagonal entry -> entry here, or none
     std::vector<Index> offsets, col;            // this level's pattern
+    std::vector<Index> transposed;              // per entry (a, b): the entry (b, a)
     std::vector<double> values, diag, inv_diag; // R x R per entry / row
     std::vector<float> single;                  // values in single precision for the sweeps, each block
                                                 // by columns (subtract_sweep_product), or empty
@@ -370,7 +372,9 @@ private:
     const Row* p = l == 0 ? points : levels_[l - 1].centre.data();
     const long na = long(L.n), n = long(L.parent_of.size());
     bool definite = true, sturdy = true;
-#pragma omp parallel num_threads(team(l, threads)) reduction(&& : definite, sturdy)
+    const int nt = team(l, threads);
+    const bool in_order = nt == 1;
+#pragma omp parallel num_threads(nt) reduction(&& : definite, sturdy)
     {
 #pragma omp for schedule(static)
       for(long a = 0; a < na; ++a) {
@@ -387,18 +391,36 @@ private:
       for(long i = 0; i < n; ++i)
         for(int k = 0; k < D; ++k)
           L.offset[std::size_t(i)][k] = p[i][k] - L.centre[L.parent_of[std::size_t(i)]][k];
-#pragma omp for schedule(static)
-      for(long a = 0; a < na; ++a) {
+      // on one thread the finer rows in order, in which they lie (the same
+      // sums: see sum_galerkin_in_order)
+      if(in_order) {
         if(l == 0)
-          sum_galerkin<D>(L, std::size_t(a), fine.offsets, fine.col, fine.values, fine.diag, fine.upper);
+          sum_galerkin_in_order<D>(L, fine.offsets, fine.col, fine.values, fine.diag, fine.upper);
         else {
           const Level& f = levels_[l - 1];
-          sum_galerkin<R>(L, std::size_t(a), f.offsets.data(), f.col.data(), f.values.data(), f.diag.data());
+          sum_galerkin_in_order<R>(L, f.offsets.data(), f.col.data(), f.values.data(), f.diag.data());
+        }
+      }
+#pragma omp for schedule(static)
+      for(long a = 0; a < na; ++a) {
+        if(!in_order) {
+          if(l == 0)
+            sum_galerkin<D>(L, std::size_t(a), fine.offsets, fine.col, fine.values, fine.diag, fine.upper);
+          else {
+            const Level& f = levels_[l - 1];
+            sum_galerkin<R>(L, std::size_t(a), f.offsets.data(), f.col.data(), f.values.data(), f.diag.data());
+          }
         }
         bool block_sturdy = false;
         definite = invert_diagonal(L, std::size_t(a), block_sturdy) && definite;
         sturdy = sturdy && block_sturdy;
       }
+      // the entries below the diagonal from those above (sum_galerkin)
+#pragma omp for schedule(static)
+      for(long a = 0; a < na; ++a)
+        for(Index s = L.offsets[std::size_t(a)]; s < L.offsets[std::size_t(a) + 1]; ++s)
+          if(L.col[s] < Index(a))
+            transpose_block<R>(&L.values[std::size_t(L.transposed[s]) * RR], &L.values[std::size_t(s) * RR]);
     }
     SPRING_MOTION_CHECK(definite, "multigrid: a coarse diagonal block is not positive definite");
     // In 2D a coarse block holds 9 values, and converting them in the
@@ -432,27 +454,126 @@ private:
     return values + std::size_t(q) * F * F;
   }
 
-  // aggregate a's row of the Galerkin product, summed over its members'
+  // Aggregate a's row of the Galerkin product, summed over its members'
   // entries of the finer level (F x F blocks; of the fine level, F = D, the
-  // entries' upper triangles when `upper` is given, see Csr_view)
+  // entries' upper triangles when `upper` is given, see Csr_view): only its
+  // entries (a, b) with b > a and its diagonal block. The finer matrix is
+  // symmetric, so entry (j, i) adds the transpose of what (i, j) adds: the
+  // entries (b, a) are the transposes of the (a, b) (load_level copies them),
+  // and of the pairs inside the aggregate one side adds both. Half the block
+  // products of summing every entry, and every level's matrix exactly
+  // symmetric.
   template <int F>
   static void sum_galerkin(Level& L, std::size_t a, const Index* offsets, const Index* col, const double* values,
                            const double* diag, const double* upper = nullptr)
   {
+    clear_galerkin_row(L, a);
+    const Index members_end = Index(L.members.size());
+    for(Index m = L.member_offsets[a]; m < L.member_offsets[a + 1]; ++m) {
+      // the members' rows lie apart (the finer order is not the
+      // aggregates'): the next member's row is fetched while this one is
+      // summed, its offsets and diagonal block one member earlier
+      if(m + 2 < members_end) {
+        __builtin_prefetch(&offsets[L.members[m + 2]]);
+        __builtin_prefetch(diag + std::size_t(L.members[m + 2]) * F * F);
+      }
+      if(m + 1 < members_end)
+        prefetch_row<F>(L, L.members[m + 1], offsets, col, values, upper);
+      add_galerkin_row<F>(L, a, L.members[m], offsets, col, values, diag, upper);
+    }
+  }
+
+  // The same for every aggregate, the finer rows taken in their order: each
+  // coarse block gains the same terms in the same order as from
+  // sum_galerkin (its aggregate's members in increasing order, each row's
+  // entries in order), so the same bits, from a pass that reads the finer
+  // matrix in the order it is stored. On one thread: a block's terms come
+  // from rows that different threads would take.
+  template <int F>
+  static void sum_galerkin_in_order(Level& L, const Index* offsets, const Index* col, const double* values,
+                                    const double* diag, const double* upper = nullptr)
+  {
+    for(std::size_t a = 0; a < L.n; ++a)
+      clear_galerkin_row(L, a);
+    for(std::size_t i = 0; i < L.parent_of.size(); ++i)
+      add_galerkin_row<F>(L, L.parent_of[i], i, offsets, col, values, diag, upper);
+  }
+
+  // zeroes what sum_galerkin sums in aggregate a's row
+  static void clear_galerkin_row(Level& L, std::size_t a)
+  {
     double* dA = &L.diag[a * RR];
     std::fill(dA, dA + RR, 0.0);
-    std::fill(L.values.begin() + long(L.offsets[a]) * RR, L.values.begin() + long(L.offsets[a + 1]) * RR, 0.0);
-    for(Index m = L.member_offsets[a]; m < L.member_offsets[a + 1]; ++m) {
-      const std::size_t i = L.members[m];
-      const Row& di = L.offset[i];
-      add_galerkin_by_blocks<F>(diag + i * F * F, di, di, dA);
-      for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
-        const Index s = L.slot_of[q];
-        std::array<double, F * F> whole;
-        add_galerkin_by_blocks<F>(whole_block<F>(values, upper, q, whole), di, L.offset[col[q]],
-                                  s == none ? dA : &L.values[std::size_t(s) * RR]);
+    for(Index s = L.offsets[a]; s < L.offsets[a + 1]; ++s)
+      if(L.col[s] > Index(a))
+        std::fill(&L.values[std::size_t(s) * RR], &L.values[std::size_t(s + 1) * RR], 0.0);
+  }
+
+  // adds finer row i's terms to aggregate a's row (see sum_galerkin)
+  template <int F>
+  static void add_galerkin_row(Level& L, std::size_t a, std::size_t i, const Index* offsets, const Index* col,
+                               const double* values, const double* diag, const double* upper)
+  {
+    double* dA = &L.diag[a * RR];
+    const Row& di = L.offset[i];
+    add_galerkin_by_blocks<F>(diag + i * F * F, di, di, dA);
+    for(Index q = offsets[i]; q < offsets[i + 1]; ++q) {
+      const Index s = L.slot_of[q];
+      std::array<double, F * F> whole;
+      if(s != none) {
+        if(L.col[s] > Index(a))
+          add_galerkin_by_blocks<F>(whole_block<F>(values, upper, q, whole), di, L.offset[col[q]],
+                                    &L.values[std::size_t(s) * RR]);
+      } else if(std::size_t(col[q]) > i) {
+        std::array<double, RR> X{};
+        add_galerkin_by_blocks<F>(whole_block<F>(values, upper, q, whole), di, L.offset[col[q]], X.data());
+        for(int r = 0; r < R; ++r)
+          for(int c = 0; c < R; ++c)
+            dA[r * R + c] += X[std::size_t(r * R + c)] + X[std::size_t(c * R + r)];
       }
     }
+  }
+
+  // requests finer row i's entries (their blocks, columns and slots here)
+  template <int F>
+  static void prefetch_row(const Level& L, Index i, const Index* offsets, const Index* col, const double* values,
+                           const double* upper)
+  {
+    constexpr std::size_t w = F == D ? D * (D + 1) / 2 : std::size_t(F * F);
+    const double* blocks = upper ? upper : values;
+    const std::size_t width = upper ? w : std::size_t(F * F);
+    const char* b = reinterpret_cast<const char*>(blocks + std::size_t(offsets[i]) * width);
+    const char* e = reinterpret_cast<const char*>(blocks + std::size_t(offsets[i + 1]) * width);
+    for(; b < e; b += 64)
+      __builtin_prefetch(b);
+    __builtin_prefetch(&col[offsets[i]]);
+    __builtin_prefetch(&L.slot_of[offsets[i]]);
+  }
+
+  // per entry (a, b) of a pattern, the entry (b, a); the pattern of a
+  // symmetric matrix has both
+  static std::vector<Index> transposed_entries(const std::vector<Index>& offsets, const std::vector<Index>& col)
+  {
+    std::vector<Index> t(col.size(), none);
+    for(std::size_t a = 0; a + 1 < offsets.size(); ++a)
+      for(Index s = offsets[a]; s < offsets[a + 1]; ++s)
+        for(Index u = offsets[col[s]]; u < offsets[col[s] + 1]; ++u)
+          if(col[u] == Index(a)) {
+            t[s] = u;
+            break;
+          }
+    SPRING_MOTION_CHECK(std::find(t.begin(), t.end(), none) == t.end(),
+                        "rigid-body multigrid: the pattern of the finer matrix is not symmetric");
+    return t;
+  }
+
+  // T = M^T for F x F row-major blocks
+  template <int F>
+  static void transpose_block(const double* M, double* T)
+  {
+    for(int r = 0; r < F; ++r)
+      for(int c = 0; c < F; ++c)
+        T[c * F + r] = M[r * F + c];
   }
 
   // An aggregate whose vertices lie on one line (a single vertex; two in 3D)

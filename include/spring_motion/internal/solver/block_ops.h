@@ -14,6 +14,20 @@
 namespace spring_motion {
 namespace internal {
 
+/// Requests the cache lines of [begin, end) for reading (no effect on any
+/// value): rows whose order the hardware prefetcher does not follow.
+template <class T>
+inline void prefetch_range(const T* begin, const T* end)
+{
+#if defined(__GNUC__)
+  for(const char* a = reinterpret_cast<const char*>(begin); a < reinterpret_cast<const char*>(end); a += 64)
+    __builtin_prefetch(a);
+#else
+  (void)begin;
+  (void)end;
+#endif
+}
+
 /// The inverse of the D x D row-major block m, or false when m is singular
 /// or not finite: |det m| must exceed a rounding error of the product of its
 /// row norms (Hadamard's bound on |det m|), so the test does not depend on

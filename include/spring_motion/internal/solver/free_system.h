@@ -841,16 +841,8 @@ private:
   template <bool B, bool Upper, class V>
   void prefetch_row(const V* off, std::size_t k) const
   {
-#if defined(__GNUC__)
     constexpr std::size_t w = B ? (Upper ? UD : DD) : 1;
-    const char* a = reinterpret_cast<const char*>(off + std::size_t(row_offsets_[k]) * w);
-    const char* e = reinterpret_cast<const char*>(off + std::size_t(row_offsets_[k + 1]) * w);
-    for(; a < e; a += 64)
-      __builtin_prefetch(a);
-#else
-    (void)off;
-    (void)k;
-#endif
+    prefetch_range(off + std::size_t(row_offsets_[k]) * w, off + std::size_t(row_offsets_[k + 1]) * w);
   }
 
   // Gauss-Seidel over the colours in order, rows in order within a block

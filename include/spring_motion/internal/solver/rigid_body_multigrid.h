@@ -474,8 +474,9 @@ private:
       // aggregates'): the next member's row is fetched while this one is
       // summed, its offsets and diagonal block one member earlier
       if(m + 2 < members_end) {
-        __builtin_prefetch(&offsets[L.members[m + 2]]);
-        __builtin_prefetch(diag + std::size_t(L.members[m + 2]) * F * F);
+        const std::size_t ahead = L.members[m + 2];
+        prefetch_range(&offsets[ahead], &offsets[ahead + 1]);
+        prefetch_range(diag + ahead * F * F, diag + (ahead + 1) * F * F);
       }
       if(m + 1 < members_end)
         prefetch_row<F>(L, L.members[m + 1], offsets, col, values, upper);
@@ -539,15 +540,11 @@ private:
   static void prefetch_row(const Level& L, Index i, const Index* offsets, const Index* col, const double* values,
                            const double* upper)
   {
-    constexpr std::size_t w = F == D ? D * (D + 1) / 2 : std::size_t(F * F);
-    const double* blocks = upper ? upper : values;
-    const std::size_t width = upper ? w : std::size_t(F * F);
-    const char* b = reinterpret_cast<const char*>(blocks + std::size_t(offsets[i]) * width);
-    const char* e = reinterpret_cast<const char*>(blocks + std::size_t(offsets[i + 1]) * width);
-    for(; b < e; b += 64)
-      __builtin_prefetch(b);
-    __builtin_prefetch(&col[offsets[i]]);
-    __builtin_prefetch(&L.slot_of[offsets[i]]);
+    const double* blocks = upper ? upper : values; // upper: triangles of the fine level's blocks
+    const std::size_t width = upper ? std::size_t(D * (D + 1) / 2) : std::size_t(F * F);
+    prefetch_range(blocks + std::size_t(offsets[i]) * width, blocks + std::size_t(offsets[i + 1]) * width);
+    prefetch_range(&col[offsets[i]], &col[offsets[i] + 1]);
+    prefetch_range(&L.slot_of[offsets[i]], &L.slot_of[offsets[i] + 1]);
   }
 
   // per entry (a, b) of a pattern, the entry (b, a); the pattern of a

@@ -7,8 +7,13 @@
 #include <cmath>
 #include <limits>
 
+#include <spring_motion/internal/geometry/double_pair.h>
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+#include <immintrin.h>
 #endif
 
 namespace spring_motion {
@@ -312,6 +317,58 @@ inline void subtract_block_product_by_columns(std::array<double, D>& s, const fl
   for(int c = 0; c < D; ++c)
     for(int r = 0; r < D; ++r)
       s[std::size_t(r)] -= double(Mt[c * D + r]) * x[std::size_t(c)];
+}
+
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+// subtract_row_products_by_columns for D = 6 with AVX: rows 0-3 in one
+// register, rows 4-5 in another, the row's sums kept in them from block to
+// block. Each lane subtracts its products in the order of the columns, as
+// subtract_block_product_by_columns does (AVX alone brings no fused
+// multiply-add): the same bits.
+template <class I, class X, class Keep>
+__attribute__((target("avx"))) inline void subtract_row_products_6_avx(std::array<double, 6>& s, const float* v,
+                                                                        const I* col, I first, I last, const X* x,
+                                                                        Keep keep)
+{
+  __m256d s03 = _mm256_loadu_pd(&s[0]);
+  __m128d s45 = _mm_loadu_pd(&s[4]);
+  for(I q = first; q < last; ++q) {
+    if(!keep(col[q]))
+      continue;
+    const float* M = v + std::size_t(q) * 36;
+    const double* y = x[col[q]].data();
+    for(int c = 0; c < 6; ++c) {
+      // column c: rows 0-3 in 16 bytes, rows 4-5 in the next 8 (__m64 may alias them)
+      const __m256d top = _mm256_cvtps_pd(_mm_loadu_ps(M + 6 * c));
+      const __m128d low = _mm_cvtps_pd(_mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(M + 6 * c + 4)));
+      s03 = _mm256_sub_pd(s03, _mm256_mul_pd(top, _mm256_set1_pd(y[c])));
+      s45 = _mm_sub_pd(s45, _mm_mul_pd(low, _mm_set1_pd(y[c])));
+    }
+  }
+  _mm256_storeu_pd(&s[0], s03);
+  _mm_storeu_pd(&s[4], s45);
+}
+#endif
+
+/// s -= the sum over the entries q in [first, last) with keep(col[q]) of
+/// M_q x[col[q]], the D x D blocks M_q of floats stored by columns at v + q
+/// D^2: block after block by subtract_block_product_by_columns, or, for D =
+/// 6 (the rigid-body levels in 3D) where the processor has AVX, four rows
+/// at a time with the same bits.
+template <int D, class I, class X, class Keep>
+inline void subtract_row_products_by_columns(std::array<double, D>& s, const float* v, const I* col, I first,
+                                             I last, const X* x, Keep keep)
+{
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+  if constexpr(D == 6)
+    if(four_lanes_available()) {
+      subtract_row_products_6_avx(s, v, col, first, last, x, keep);
+      return;
+    }
+#endif
+  for(I q = first; q < last; ++q)
+    if(keep(col[q]))
+      subtract_block_product_by_columns<D>(s, v + std::size_t(q) * D * D, x[col[q]]);
 }
 
 /// A max that a NaN sticks to, so a NaN can never pass for convergence:

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace spring_motion {
@@ -199,8 +200,7 @@ public:
         for(long i = 0; i < n; ++i) {
           Coarse_row r = rhs0_[std::size_t(i)];
           subtract_block_product<R>(r, &L.diag[std::size_t(i) * RR], sum_[std::size_t(i)]);
-          for(Index q = L.offsets[std::size_t(i)]; q < L.offsets[std::size_t(i) + 1]; ++q)
-            subtract_sweep_product(r, v + std::size_t(q) * RR, sum_[L.col[q]]);
+          subtract_row(r, L, v, std::size_t(i), sum_, [](Index) { return true; });
           L.rhs[std::size_t(i)] = r;
         }
       });
@@ -286,7 +286,7 @@ private:
     std::vector<Index> transposed;              // per entry (a, b): the entry (b, a)
     std::vector<double> values, diag, inv_diag; // R x R per entry / row
     std::vector<float> single;                  // values in single precision for the sweeps, each block
-                                                // by columns (subtract_sweep_product), or empty
+                                                // by columns (subtract_row), or empty
     std::vector<Coarse_row> rhs, z;
     std::vector<Row> centre;                    // per unknown
     std::vector<Row> offset;                    // per finer unknown: its position minus its aggregate's centre
@@ -672,15 +672,20 @@ private:
     dense_cholesky_solve<1>(chol_, L.n * R, envelope_, L.rhs[0].data(), L.z[0].data());
   }
 
-  // s -= M x for an off-diagonal block as the sweeps read it: doubles by
-  // rows, or the single-precision copy by columns (the same bits)
-  static void subtract_sweep_product(Coarse_row& s, const double* M, const Coarse_row& x)
+  // s -= the sum over the entries q of row i with keep(col[q]) of A_q
+  // x[col[q]], the blocks as the sweeps read them: doubles by rows, or the
+  // single-precision copy by columns (the same bits)
+  template <class T, class Keep>
+  static void subtract_row(Coarse_row& s, const Level& L, const T* v, std::size_t i, const std::vector<Coarse_row>& x,
+                           Keep keep)
   {
-    subtract_block_product<R>(s, M, x);
-  }
-  static void subtract_sweep_product(Coarse_row& s, const float* Mt, const Coarse_row& x)
-  {
-    subtract_block_product_by_columns<R>(s, Mt, x);
+    if constexpr(std::is_same_v<T, float>) {
+      subtract_row_products_by_columns<R>(s, v, L.col.data(), L.offsets[i], L.offsets[i + 1], x.data(), keep);
+    } else {
+      for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
+        if(keep(L.col[q]))
+          subtract_block_product<R>(s, v + std::size_t(q) * RR, x[L.col[q]]);
+    }
   }
 
   // calls f with the off-diagonal values the level's sweeps read: the
@@ -700,8 +705,7 @@ private:
   static Coarse_row off_residual(const Level& L, const T* v, std::size_t i)
   {
     Coarse_row s = L.rhs[i];
-    for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
-      subtract_sweep_product(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
+    subtract_row(s, L, v, i, L.z, [](Index) { return true; });
     return s;
   }
 
@@ -713,10 +717,10 @@ private:
   {
     std::fill(L.z.begin(), L.z.end(), Coarse_row{});
     for(std::size_t i = 0; i < L.n; ++i) {
+      if(i + ahead_rows < L.n)
+        prefetch_row(L, v, i + ahead_rows);
       Coarse_row s = L.rhs[i];
-      for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
-        if(L.col[q] < i)
-          subtract_sweep_product(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
+      subtract_row(s, L, v, i, L.z, [i](Index j) { return j < i; });
       L.z[i] = block_product<R>(&L.inv_diag[i * RR], s);
     }
   }
@@ -729,17 +733,29 @@ private:
   static Coarse_row residual_after_forward_sweep(const Level& L, const T* v, std::size_t i)
   {
     Coarse_row s{};
-    for(Index q = L.offsets[i]; q < L.offsets[i + 1]; ++q)
-      if(L.col[q] > i)
-        subtract_sweep_product(s, v + std::size_t(q) * RR, L.z[L.col[q]]);
+    subtract_row(s, L, v, i, L.z, [i](Index j) { return j > i; });
     return s;
   }
 
   template <class T>
   static void backward_gauss_seidel(Level& L, const T* v)
   {
-    for(std::size_t i = L.n; i-- > 0;)
+    for(std::size_t i = L.n; i-- > 0;) {
+      if(i >= ahead_rows)
+        prefetch_row(L, v, i - ahead_rows);
       L.z[i] = block_product<R>(&L.inv_diag[i * RR], off_residual(L, v, i));
+    }
+  }
+
+  // the row a sweep takes after the next: level 0's blocks outgrow the
+  // second-level cache (4.6 MB in single precision on the paper-size wing)
+  // and, without this, most of the sweeps' profiler samples wait on the
+  // first load of a block
+  static constexpr std::size_t ahead_rows = 2;
+  template <class T>
+  static void prefetch_row(const Level& L, const T* v, std::size_t i)
+  {
+    prefetch_range(v + std::size_t(L.offsets[i]) * RR, v + std::size_t(L.offsets[i + 1]) * RR);
   }
 
   // a symmetric V-cycle on level l from z = 0: forward Gauss-Seidel, coarse

@@ -50,8 +50,8 @@ namespace internal {
 /// float (as the fine level's sweeps do): a 3D block of a coarse level holds
 /// 36 values, and level 0's sweeps moved about as many bytes as the fine
 /// level's. The copy stores each block by columns, so that two rows' sums
-/// take one vector operation per column, with the same bits as by rows
-/// (subtract_block_product_by_columns). 2D levels keep double precision
+/// (four where AVX runs) take one vector operation per column, with the same
+/// bits as by rows (subtract_row_products_by_columns). 2D levels keep double precision
 /// (see load_level). The residual
 /// restricted after the forward sweep is formed from the entries the sweep
 /// read (those after each row), so each level's cycle stays the symmetric

@@ -750,12 +750,14 @@ private:
   // the row a sweep takes after the next: level 0's blocks outgrow the
   // second-level cache (4.6 MB in single precision on the paper-size wing)
   // and, without this, most of the sweeps' profiler samples wait on the
-  // first load of a block
+  // first load of a block. 2D levels (9 values a block) fit the caches,
+  // where the requests only add instructions.
   static constexpr std::size_t ahead_rows = 2;
   template <class T>
   static void prefetch_row(const Level& L, const T* v, std::size_t i)
   {
-    prefetch_range(v + std::size_t(L.offsets[i]) * RR, v + std::size_t(L.offsets[i + 1]) * RR);
+    if constexpr(D == 3)
+      prefetch_range(v + std::size_t(L.offsets[i]) * RR, v + std::size_t(L.offsets[i + 1]) * RR);
   }
 
   // a symmetric V-cycle on level l from z = 0: forward Gauss-Seidel, coarse

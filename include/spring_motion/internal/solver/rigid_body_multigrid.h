@@ -187,23 +187,14 @@ public:
     const long n = long(L.n);
     const int nt = team(0, threads);
     for(std::size_t k = 0; k < first_level_cycles; ++k) {
-      cycle(0, threads);
+      if(k == 0)
+        cycle(0, threads);
+      else
+        with_sweep_values(L, [&](const auto* v) { cycle_on_residual(threads, v); });
 #pragma omp parallel for schedule(static) num_threads(nt)
       for(long i = 0; i < n; ++i)
         for(int c = 0; c < R; ++c)
           sum_[std::size_t(i)][c] += L.z[std::size_t(i)][c];
-      if(k + 1 == first_level_cycles)
-        break;
-      // rhs0 - A sum: the diagonal block, then the row's entries
-      with_sweep_values(L, [&](const auto* v) {
-#pragma omp parallel for schedule(static) num_threads(nt)
-        for(long i = 0; i < n; ++i) {
-          Coarse_row r = rhs0_[std::size_t(i)];
-          subtract_block_product<R>(r, &L.diag[std::size_t(i) * RR], sum_[std::size_t(i)]);
-          subtract_row(r, L, v, std::size_t(i), sum_, [](Index) { return true; });
-          L.rhs[std::size_t(i)] = r;
-        }
-      });
     }
     L.z.swap(sum_);
     L.rhs.swap(rhs0_);
@@ -712,14 +703,16 @@ private:
   // Forward Gauss-Seidel from z = 0: when row i is reached z_j is still 0
   // for every j > i, so only the entries j < i change the sum (skipping the
   // others halves the blocks the sweep reads; the sum is the same).
-  template <class T>
-  static void forward_gauss_seidel_from_zero(Level& L, const T* v)
+  // `rhs(i)`: row i's right-hand side, asked for when the sweep reaches
+  // the row (see cycle_on_residual).
+  template <class T, class Rhs>
+  static void forward_gauss_seidel_from_zero(Level& L, const T* v, Rhs rhs)
   {
     std::fill(L.z.begin(), L.z.end(), Coarse_row{});
     for(std::size_t i = 0; i < L.n; ++i) {
       if(i + ahead_rows < L.n)
         prefetch_row(L, v, i + ahead_rows);
-      Coarse_row s = L.rhs[i];
+      Coarse_row s = rhs(i);
       subtract_row(s, L, v, i, L.z, [i](Index j) { return j < i; });
       L.z[i] = block_product<R>(&L.inv_diag[i * RR], s);
     }
@@ -771,11 +764,38 @@ private:
       with_sweep_values(L, [&](const auto* v) { cycle(l, threads, v); });
   }
 
+  // the next of level 0's cycles (see `cycle`), on rhs0 - A sum: each
+  // row's residual is formed as the forward sweep reaches the row (its
+  // diagonal block, then its entries) and kept for the backward sweep.
+  // The sweep then reads the row's blocks again from the first-level
+  // cache, where a pass of its own before the sweep read the level's
+  // blocks from memory once more (level 0 of the paper-size wing does not
+  // fit the second-level cache).
+  template <class T>
+  void cycle_on_residual(int threads, const T* v)
+  {
+    Level& L = levels_.front();
+    cycle(0, threads, v, [&](std::size_t i) {
+      Coarse_row r = rhs0_[i];
+      subtract_block_product<R>(r, &L.diag[i * RR], sum_[i]);
+      subtract_row(r, L, v, i, sum_, [](Index) { return true; });
+      L.rhs[i] = r;
+      return r;
+    });
+  }
+
   template <class T>
   void cycle(std::size_t l, int threads, const T* v)
   {
+    const Level& L = levels_[l];
+    cycle(l, threads, v, [&L](std::size_t i) { return L.rhs[i]; });
+  }
+
+  template <class T, class Rhs>
+  void cycle(std::size_t l, int threads, const T* v, Rhs rhs)
+  {
     Level& L = levels_[l];
-    forward_gauss_seidel_from_zero(L, v);
+    forward_gauss_seidel_from_zero(L, v, rhs);
     if(l + 1 == levels_.size()) { // symmetric, so the cycle stays a symmetric preconditioner
       backward_gauss_seidel(L, v);
       return;

@@ -134,6 +134,7 @@ public:
       L.inv_diag.resize(L.n * RR);
       L.rhs.resize(L.n);
       L.z.resize(L.n);
+      L.residual.resize(L.n);
       L.centre.resize(L.n);
       L.offset.resize(n);
       L.member_offsets = std::move(g.member_offsets);
@@ -279,6 +280,7 @@ private:
     std::vector<float> single;                  // values in single precision for the sweeps, each block
                                                 // by columns (subtract_row), or empty
     std::vector<Coarse_row> rhs, z;
+    std::vector<Coarse_row> residual;           // after the forward sweep (see cycle(l, threads, v, rhs))
     std::vector<Row> centre;                    // per unknown
     std::vector<Row> offset;                    // per finer unknown: its position minus its aggregate's centre
     std::vector<Index> member_offsets, members; // per unknown: the finer unknowns it aggregates, increasing
@@ -803,13 +805,22 @@ private:
     Level& C = levels_[l + 1];
     const long nc = long(C.n), n = long(L.n);
     const int nt = team(l + 1, threads);
+    // the residual in row order, where the rows' blocks can be requested
+    // ahead (prefetch_row), then restricted aggregate by aggregate: formed
+    // in the restriction's order, the members of an aggregate lie scattered
+    // over the level and most reads of their blocks waited on memory
+#pragma omp parallel for schedule(static) num_threads(nt)
+    for(long i = 0; i < n; ++i) {
+      if(std::size_t(i) + ahead_rows < L.n)
+        prefetch_row(L, v, std::size_t(i) + ahead_rows);
+      L.residual[std::size_t(i)] = residual_after_forward_sweep(L, v, std::size_t(i));
+    }
 #pragma omp parallel for schedule(static) num_threads(nt)
     for(long b = 0; b < nc; ++b) {
       Coarse_row rc{};
       for(Index m = C.member_offsets[std::size_t(b)]; m < C.member_offsets[std::size_t(b) + 1]; ++m) {
         const std::size_t i = C.members[m];
-        const Coarse_row s = residual_after_forward_sweep(L, v, i);
-        add_restricted<R>(s.data(), C.offset[i], rc);
+        add_restricted<R>(L.residual[i].data(), C.offset[i], rc);
       }
       C.rhs[std::size_t(b)] = rc;
     }

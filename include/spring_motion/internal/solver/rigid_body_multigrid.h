@@ -159,15 +159,35 @@ public:
   /// level 0's right-hand side from the fine residual: P^T r
   void restrict_from(const std::vector<Row>& fine_residual, int threads = 1)
   {
+    // An aggregate's members lie scattered over the fine rows (numbered by
+    // colour for the sweeps), and without requests most reads of their
+    // residuals and offsets waited on memory: each member requests the one
+    // ahead_members later. Not when the two arrays fit the caches: the 2D
+    // paper mesh's solve then took 2% more instructions, all in the
+    // requests (0.3% more for the test alone, hence two loops).
     Level& c = levels_.front();
     const long na = long(c.n);
+    const Index nm = Index(c.members.size());
+    auto restrict_all = [&](auto requesting) {
 #pragma omp parallel for schedule(static) num_threads(team(0, threads))
-    for(long a = 0; a < na; ++a) {
-      Coarse_row rc{};
-      for(Index m = c.member_offsets[std::size_t(a)]; m < c.member_offsets[std::size_t(a) + 1]; ++m)
-        add_restricted<D>(fine_residual[c.members[m]].data(), c.offset[c.members[m]], rc);
-      c.rhs[std::size_t(a)] = rc;
-    }
+      for(long a = 0; a < na; ++a) {
+        Coarse_row rc{};
+        for(Index m = c.member_offsets[std::size_t(a)]; m < c.member_offsets[std::size_t(a) + 1]; ++m) {
+          if constexpr(decltype(requesting)::value)
+            if(m + ahead_members < nm) {
+              const Index f = c.members[m + ahead_members];
+              prefetch_range(&fine_residual[f], &fine_residual[f] + 1);
+              prefetch_range(&c.offset[f], &c.offset[f] + 1);
+            }
+          add_restricted<D>(fine_residual[c.members[m]].data(), c.offset[c.members[m]], rc);
+        }
+        c.rhs[std::size_t(a)] = rc;
+      }
+    };
+    if(std::size_t(nm) * 2 * sizeof(Row) > prefetch_members_above)
+      restrict_all(std::true_type{});
+    else
+      restrict_all(std::false_type{});
   }
 
   /// Solves approximately on level 0: `first_level_cycles` V-cycles over
@@ -748,6 +768,8 @@ private:
   // first load of a block. 2D levels (9 values a block) fit the caches,
   // where the requests only add instructions.
   static constexpr std::size_t ahead_rows = 2;
+  static constexpr Index ahead_members = 32;
+  static constexpr std::size_t prefetch_members_above = std::size_t(1) << 20; // bytes
   template <class T>
   static void prefetch_row(const Level& L, const T* v, std::size_t i)
   {

@@ -159,35 +159,7 @@ public:
   /// level 0's right-hand side from the fine residual: P^T r
   void restrict_from(const std::vector<Row>& fine_residual, int threads = 1)
   {
-    // An aggregate's members lie scattered over the fine rows (numbered by
-    // colour for the sweeps), and without requests most reads of their
-    // residuals and offsets waited on memory: each member requests the one
-    // ahead_members later. Not when the two arrays fit the caches: the 2D
-    // paper mesh's solve then took 2% more instructions, all in the
-    // requests (0.3% more for the test alone, hence two loops).
-    Level& c = levels_.front();
-    const long na = long(c.n);
-    const Index nm = Index(c.members.size());
-    auto restrict_all = [&](auto requesting) {
-#pragma omp parallel for schedule(static) num_threads(team(0, threads))
-      for(long a = 0; a < na; ++a) {
-        Coarse_row rc{};
-        for(Index m = c.member_offsets[std::size_t(a)]; m < c.member_offsets[std::size_t(a) + 1]; ++m) {
-          if constexpr(decltype(requesting)::value)
-            if(m + ahead_members < nm) {
-              const Index f = c.members[m + ahead_members];
-              prefetch_range(&fine_residual[f], &fine_residual[f] + 1);
-              prefetch_range(&c.offset[f], &c.offset[f] + 1);
-            }
-          add_restricted<D>(fine_residual[c.members[m]].data(), c.offset[c.members[m]], rc);
-        }
-        c.rhs[std::size_t(a)] = rc;
-      }
-    };
-    if(std::size_t(nm) * 2 * sizeof(Row) > prefetch_members_above)
-      restrict_all(std::true_type{});
-    else
-      restrict_all(std::false_type{});
+    restrict_to(levels_.front(), fine_residual, team(0, threads));
   }
 
   /// Solves approximately on level 0: `first_level_cycles` V-cycles over
@@ -375,6 +347,41 @@ private:
     const auto t = rotation_transpose_times(d, v);
     for(int k = 0; k < R - D; ++k)
       rc[D + k] += t[k] + (F == R ? s[D + k] : 0.0);
+  }
+
+  // C's right-hand side P^T s from s, one row per finer unknown (D values
+  // on the fine level, R on a coarse one), summed aggregate by aggregate.
+  // An aggregate's members lie scattered over the finer rows (the fine rows
+  // are numbered by colour for the sweeps), and without requests most reads
+  // of the wing's fine residuals and offsets waited on memory: each member
+  // requests the one ahead_members later. Not when s and the offsets fit
+  // the caches: the 2D paper mesh's solve then took 2% more instructions,
+  // all in the requests (0.3% more for the test alone, hence two loops).
+  template <std::size_t F>
+  void restrict_to(Level& C, const std::vector<std::array<double, F>>& s, int nt)
+  {
+    const long na = long(C.n);
+    const Index nm = Index(C.members.size());
+    auto restrict_all = [&](auto requesting) {
+#pragma omp parallel for schedule(static) num_threads(nt)
+      for(long a = 0; a < na; ++a) {
+        Coarse_row rc{};
+        for(Index m = C.member_offsets[std::size_t(a)]; m < C.member_offsets[std::size_t(a) + 1]; ++m) {
+          if constexpr(decltype(requesting)::value)
+            if(m + ahead_members < nm) {
+              const Index f = C.members[m + ahead_members];
+              prefetch_range(&s[f], &s[f] + 1);
+              prefetch_range(&C.offset[f], &C.offset[f] + 1);
+            }
+          add_restricted<int(F)>(s[C.members[m]].data(), C.offset[C.members[m]], rc);
+        }
+        C.rhs[std::size_t(a)] = rc;
+      }
+    };
+    if(std::size_t(nm) * (sizeof(s[0]) + sizeof(Row)) > prefetch_members_above)
+      restrict_all(std::true_type{});
+    else
+      restrict_all(std::false_type{});
   }
 
   // level l's centres, offsets and values from the level above (the fine
@@ -825,7 +832,7 @@ private:
       return;
     }
     Level& C = levels_[l + 1];
-    const long nc = long(C.n), n = long(L.n);
+    const long n = long(L.n);
     const int nt = team(l + 1, threads);
     // the residual in row order, where the rows' blocks can be requested
     // ahead (prefetch_row), then restricted aggregate by aggregate: formed
@@ -837,15 +844,7 @@ private:
         prefetch_row(L, v, std::size_t(i) + ahead_rows);
       L.residual[std::size_t(i)] = residual_after_forward_sweep(L, v, std::size_t(i));
     }
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long b = 0; b < nc; ++b) {
-      Coarse_row rc{};
-      for(Index m = C.member_offsets[std::size_t(b)]; m < C.member_offsets[std::size_t(b) + 1]; ++m) {
-        const std::size_t i = C.members[m];
-        add_restricted<R>(L.residual[i].data(), C.offset[i], rc);
-      }
-      C.rhs[std::size_t(b)] = rc;
-    }
+    restrict_to(C, L.residual, nt);
     cycle(l + 1, threads);
     const double a = parameters.correction;
 #pragma omp parallel for schedule(static) num_threads(nt)

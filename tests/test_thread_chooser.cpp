@@ -361,6 +361,47 @@ TEST_CASE("team start: the caller's work on the caller's thread while the team's
   CHECK_THROWS_AS(run_while_team_starts(2, [] { throw std::runtime_error("unreadable"); }), std::runtime_error);
   CHECK(start_team(2) == 2);
 }
+
+// A loop of in_team: every index once; one thread enters no region, a
+// team's threads share the loop, and inside a caller's own region each
+// caller thread's team of one runs its whole loop (an orphaned loop there
+// would have split it between the caller's threads).
+TEST_CASE("in_team: a team of one outside any region, its loops whole inside a caller's region", "[threads]")
+{
+  using namespace spring_motion::internal;
+  constexpr long n = 1000;
+  auto run = [&](int threads, std::vector<int>& hits, int& level, int& team) {
+    in_team(threads, [&] {
+#pragma omp for schedule(static)
+      for(long i = 0; i < n; ++i)
+        ++hits[std::size_t(i)];
+#pragma omp master
+      {
+        level = omp_get_level();
+        team = omp_get_num_threads();
+      }
+    });
+  };
+  for(const int threads : {1, 2}) {
+    std::vector<int> hits(n, 0);
+    int level = -1, team = -1;
+    run(threads, hits, level, team);
+    CHECK(std::count(hits.begin(), hits.end(), 1) == n);
+    CHECK(level == (threads == 1 ? 0 : 1));
+    CHECK(team == threads);
+  }
+  std::vector<std::vector<int>> hits(2, std::vector<int>(n, 0));
+  std::vector<int> level(2, -1), team(2, -1);
+#pragma omp parallel num_threads(2)
+  {
+    const int me = omp_get_thread_num();
+    run(1, hits[std::size_t(me)], level[std::size_t(me)], team[std::size_t(me)]);
+  }
+  for(std::size_t t = 0; t < 2; ++t) {
+    CHECK(std::count(hits[t].begin(), hits[t].end(), 1) == n);
+    CHECK(team[t] == 1);
+  }
+}
 #endif
 
 #if defined(_OPENMP) && defined(__linux__)

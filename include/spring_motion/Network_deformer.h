@@ -352,13 +352,14 @@ public:
   {
     const long m = long(initial_measure_.size());
     double mn = std::numeric_limits<double>::infinity(), mx = -mn;
-#pragma omp parallel for reduction(min : mn) reduction(max : mx) schedule(static) \
-    num_threads(internal::thread_count(threads, std::size_t(m)))
-    for(long t = 0; t < m; ++t) {
-      const double r = scaled_measure(traversal_points(positions_, std::size_t(t))) / initial_measure_[std::size_t(t)];
-      mn = std::min(mn, r);
-      mx = std::max(mx, r);
-    }
+    internal::in_team(internal::thread_count(threads, std::size_t(m)), [&] {
+#pragma omp for reduction(min : mn) reduction(max : mx) schedule(static)
+      for(long t = 0; t < m; ++t) {
+        const double r = scaled_measure(traversal_points(positions_, std::size_t(t))) / initial_measure_[std::size_t(t)];
+        mn = std::min(mn, r);
+        mx = std::max(mx, r);
+      }
+    });
     return {mn, mx};
   }
 
@@ -429,8 +430,7 @@ private:
       hi = -lo;
       if(guess)
         all.guess(quality_guess_.smallest + quality_guess_.inset, quality_guess_.largest - quality_guess_.inset);
-#pragma omp parallel num_threads(internal::thread_count(threads, std::size_t(m)))
-      {
+      internal::in_team(internal::thread_count(threads, std::size_t(m)), [&] {
         internal::Quality_extremes my_all = all, my_moving;
         double my_lo = lo, my_hi = hi;
 #pragma omp for schedule(static) nowait
@@ -462,7 +462,7 @@ private:
           lo = std::min(lo, my_lo);
           hi = std::max(hi, my_hi);
         }
-      }
+      });
     };
     pass(guessed);
     if(guessed) {
@@ -581,19 +581,21 @@ private:
       if(warm)
         w = internal::warm_start_weights(target - t_, 0.5 * (target + t_), history_.h, history_.m, history_.count,
                                          options.solver.extrapolate);
-#pragma omp parallel for schedule(static) num_threads(nt)
-      for(long f = 0; f < nfree; ++f) {
-        const Index i = free_[std::size_t(f)];
-        for(int c = 0; c < D; ++c) {
-          double v = 0;
-          if(warm) {
-            v = w.weight[0] * increments_[0][i][c];
-            for(std::size_t j = 1; j < w.used; ++j)
-              v += w.weight[j] * increments_[j][i][c];
+      internal::in_team(nt, [&] {
+#pragma omp for schedule(static)
+        for(long f = 0; f < nfree; ++f) {
+          const Index i = free_[std::size_t(f)];
+          for(int c = 0; c < D; ++c) {
+            double v = 0;
+            if(warm) {
+              v = w.weight[0] * increments_[0][i][c];
+              for(std::size_t j = 1; j < w.used; ++j)
+                v += w.weight[j] * increments_[j][i][c];
+            }
+            delta_[i][c] = v;
           }
-          delta_[i][c] = v;
         }
-      }
+      });
     }
     // the motion is evaluated once per moving vertex and attempt
     moving_targets_.resize(moving_.size());
@@ -675,14 +677,16 @@ private:
 
     t0 = Clock::now();
     candidate_.resize(n);
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long i = 0; i < long(n); ++i) {
-      const std::size_t I = std::size_t(i);
-      candidate_[I] = positions_[I];
-      if(is_free_[I])
-        for(int c = 0; c < D; ++c)
-          candidate_[I][c] += delta_[I][c];
-    }
+    internal::in_team(nt, [&] {
+#pragma omp for schedule(static)
+      for(long i = 0; i < long(n); ++i) {
+        const std::size_t I = std::size_t(i);
+        candidate_[I] = positions_[I];
+        if(is_free_[I])
+          for(int c = 0; c < D; ++c)
+            candidate_[I][c] += delta_[I][c];
+      }
+    });
     // constrained vertices land exactly on their prescribed positions
     for(std::size_t k = 0; k < moving_.size(); ++k)
       candidate_[moving_[k]] = moving_targets_[k];
@@ -713,13 +717,15 @@ private:
     // lifetime, so a view of it (the Python module's) stays valid
     increments_[2].swap(increments_[1]);
     increments_[1].swap(increments_[0]);
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long i = 0; i < long(n); ++i) {
-      const std::size_t I = std::size_t(i);
-      positions_[I] = candidate_[I];
-      if(is_free_[I])
-        increments_[0][I] = delta_[I];
-    }
+    internal::in_team(nt, [&] {
+#pragma omp for schedule(static)
+      for(long i = 0; i < long(n); ++i) {
+        const std::size_t I = std::size_t(i);
+        positions_[I] = candidate_[I];
+        if(is_free_[I])
+          increments_[0][I] = delta_[I];
+      }
+    });
     history_.h = {target - t_, history_.h[0], history_.h[1]};
     history_.m = {0.5 * (target + t_), history_.m[0], history_.m[1]};
     ++history_.count;

@@ -335,25 +335,27 @@ private:
         L.diag[L.parent_of[i]] += finer_row_sum(a, L, i);
     } else {
       const long na = long(L.n);
-#pragma omp parallel for schedule(static) num_threads(nt)
-      for(long A = 0; A < na; ++A) {
-        const std::size_t b = std::size_t(A);
-        std::fill(L.values.begin() + long(L.offsets[b]), L.values.begin() + long(L.offsets[b + 1]), 0.0);
-        double dA = 0;
-        for(Index m = L.member_offsets[b]; m < L.member_offsets[b + 1]; ++m) {
-          // the next members' rows are fetched while this one is summed
-          if(m + 2 < Index(L.members.size())) {
-            __builtin_prefetch(&a.offsets[L.members[m + 2]]);
-            __builtin_prefetch(&a.diag[L.members[m + 2]]);
+      in_team(nt, [&] {
+#pragma omp for schedule(static)
+        for(long A = 0; A < na; ++A) {
+          const std::size_t b = std::size_t(A);
+          std::fill(L.values.begin() + long(L.offsets[b]), L.values.begin() + long(L.offsets[b + 1]), 0.0);
+          double dA = 0;
+          for(Index m = L.member_offsets[b]; m < L.member_offsets[b + 1]; ++m) {
+            // the next members' rows are fetched while this one is summed
+            if(m + 2 < Index(L.members.size())) {
+              __builtin_prefetch(&a.offsets[L.members[m + 2]]);
+              __builtin_prefetch(&a.diag[L.members[m + 2]]);
+            }
+            if(m + 1 < Index(L.members.size())) {
+              __builtin_prefetch(&a.values[a.offsets[L.members[m + 1]]]);
+              __builtin_prefetch(&L.slot_of[a.offsets[L.members[m + 1]]]);
+            }
+            dA += finer_row_sum(a, L, L.members[m]);
           }
-          if(m + 1 < Index(L.members.size())) {
-            __builtin_prefetch(&a.values[a.offsets[L.members[m + 1]]]);
-            __builtin_prefetch(&L.slot_of[a.offsets[L.members[m + 1]]]);
-          }
-          dA += finer_row_sum(a, L, L.members[m]);
+          L.diag[b] = dA;
         }
-        L.diag[b] = dA;
-      }
+      });
     }
     for(std::size_t A = 0; A < L.n; ++A) {
       SPRING_MOTION_CHECK(L.diag[A] > 0, "multigrid: a coarse diagonal is not positive (" << L.diag[A] << ")");

@@ -79,9 +79,11 @@ void copy_in_traversal_order(const Angle_slots& slots, const std::vector<std::ar
 {
   const long nt = long(slots.traversal_vertices.size());
   xt.resize(std::size_t(nt));
-#pragma omp parallel for schedule(static) num_threads(heavy_thread_count(threads, std::size_t(nt)))
-  for(long v = 0; v < nt; ++v)
-    xt[std::size_t(v)] = x[slots.traversal_vertices[std::size_t(v)]];
+  in_team(heavy_thread_count(threads, std::size_t(nt)), [&] {
+#pragma omp for schedule(static)
+    for(long v = 0; v < nt; ++v)
+      xt[std::size_t(v)] = x[slots.traversal_vertices[std::size_t(v)]];
+  });
 }
 
 /// The corners of the traversal's i-th element in place: pointers to their

@@ -88,20 +88,22 @@ bool element_inverse_sin_squared_in_fours(const Angle_slots& slots, const std::v
       return false;
     constexpr std::size_t E = 6;
     const long quads = (m + 3) / 4;
-#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
-    for(long h = 0; h < quads; ++h) {
-      std::size_t e[4];
-      std::array<const double*, 4> t[4];
-      for(std::size_t l = 0; l < 4; ++l) {
-        e[l] = std::min(4 * std::size_t(h) + l, std::size_t(m) - 1);
-        t[l] = traversal_element_corners<3>(slots, xt, e[l]);
+    in_team(internal::heavy_thread_count(threads, std::size_t(m)), [&] {
+#pragma omp for schedule(static)
+      for(long h = 0; h < quads; ++h) {
+        std::size_t e[4];
+        std::array<const double*, 4> t[4];
+        for(std::size_t l = 0; l < 4; ++l) {
+          e[l] = std::min(4 * std::size_t(h) + l, std::size_t(m) - 1);
+          t[l] = traversal_element_corners<3>(slots, xt, e[l]);
+        }
+        double a[4][6];
+        dihedral_inverse_sin_squared(t, a);
+        for(std::size_t l = 0; l < 4; ++l)
+          for(std::size_t q = 0; q < E; ++q)
+            angles[slots.slot_position[e[l] * E + q]] = a[l][q];
       }
-      double a[4][6];
-      dihedral_inverse_sin_squared(t, a);
-      for(std::size_t l = 0; l < 4; ++l)
-        for(std::size_t q = 0; q < E; ++q)
-          angles[slots.slot_position[e[l] * E + q]] = a[l][q];
-    }
+    });
     return true;
   }
 #endif
@@ -149,49 +151,54 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
         // two elements at once (double_pair.h); an odd last one is paired
         // with itself
         const long pairs = (m + 1) / 2;
-#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
-        for(long h = 0; h < pairs; ++h) {
-          const std::size_t i = 2 * std::size_t(h), j = std::min(i + 1, std::size_t(m) - 1);
-          const auto a = element_edge_inverse_sin_squared<D>(traversal_element_corners<D>(slots, xt, i),
-                                                             traversal_element_corners<D>(slots, xt, j));
-          for(std::size_t q = 0; q < E; ++q)
-            angles[slots.slot_position[i * E + q]] = a[0][q];
-          for(std::size_t q = 0; q < E; ++q)
-            angles[slots.slot_position[j * E + q]] = a[1][q];
-        }
+        in_team(internal::heavy_thread_count(threads, std::size_t(m)), [&] {
+#pragma omp for schedule(static)
+          for(long h = 0; h < pairs; ++h) {
+            const std::size_t i = 2 * std::size_t(h), j = std::min(i + 1, std::size_t(m) - 1);
+            const auto a = element_edge_inverse_sin_squared<D>(traversal_element_corners<D>(slots, xt, i),
+                                                               traversal_element_corners<D>(slots, xt, j));
+            for(std::size_t q = 0; q < E; ++q)
+              angles[slots.slot_position[i * E + q]] = a[0][q];
+            for(std::size_t q = 0; q < E; ++q)
+              angles[slots.slot_position[j * E + q]] = a[1][q];
+          }
+        });
       }
     } else {
-#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(m)))
-      for(long i = 0; i < m; ++i) {
-        const auto p = traversal_element_points<D>(slots, xt, std::size_t(i));
-        const std::array<double, E> a = element_edge_angles<D>(p);
-        for(int j = 0; j < E; ++j)
-          angles[slots.slot_position[std::size_t(i) * E + std::size_t(j)]] = a[std::size_t(j)];
-      }
+      in_team(internal::heavy_thread_count(threads, std::size_t(m)), [&] {
+#pragma omp for schedule(static)
+        for(long i = 0; i < m; ++i) {
+          const auto p = traversal_element_points<D>(slots, xt, std::size_t(i));
+          const std::array<double, E> a = element_edge_angles<D>(p);
+          for(int j = 0; j < E; ++j)
+            angles[slots.slot_position[std::size_t(i) * E + std::size_t(j)]] = a[std::size_t(j)];
+        }
+      });
     }
   } else if(by_face) {
     if constexpr(D == 3) {
       const long nf = long(slots.faces.size());
       angles.resize(std::size_t(nf) * 3 + padding);
-#pragma omp parallel for schedule(static) num_threads(internal::heavy_thread_count(threads, std::size_t(nf)))
-      for(long f = 0; f < nf; ++f) {
-        const auto& F = slots.faces[std::size_t(f)];
-        std::array<double, 3> a;
-        if constexpr(sines)
-          a = triangle_inverse_sin_squared<3>(x[F[0]], x[F[1]], x[F[2]]);
-        else
-          a = triangle_angles<3>(x[F[0]], x[F[1]], x[F[2]]);
-        for(int j = 0; j < 3; ++j)
-          angles[slots.face_slot_position[3 * std::size_t(f) + std::size_t(j)]] = a[std::size_t(j)];
-      }
+      in_team(internal::heavy_thread_count(threads, std::size_t(nf)), [&] {
+#pragma omp for schedule(static)
+        for(long f = 0; f < nf; ++f) {
+          const auto& F = slots.faces[std::size_t(f)];
+          std::array<double, 3> a;
+          if constexpr(sines)
+            a = triangle_inverse_sin_squared<3>(x[F[0]], x[F[1]], x[F[2]]);
+          else
+            a = triangle_angles<3>(x[F[0]], x[F[1]], x[F[2]]);
+          for(int j = 0; j < 3; ++j)
+            angles[slots.face_slot_position[3 * std::size_t(f) + std::size_t(j)]] = a[std::size_t(j)];
+        }
+      });
     }
   }
   const auto& off = by_face ? slots.edge_face_slot_offsets : slots.layout_slot_offsets;
   const long ne = long(net.number_of_edges());
   k.resize(std::size_t(ne));
   long bad = ne, coincident = ne;
-#pragma omp parallel num_threads(internal::heavy_thread_count(threads, std::size_t(ne)))
-  {
+  in_team(internal::heavy_thread_count(threads, std::size_t(ne)), [&] {
     // each thread's own (Edge_function): the model's terms of the context and
     // its parameters alone are then worked out once, not per edge
     const Edge_function<Model> stiffness_of(model, ctx);
@@ -229,7 +236,7 @@ void compute_edge_stiffness(const Spring_network<D>& net, const std::vector<type
       else if(!(v >= 0 && std::isfinite(v)))
         bad = std::min(bad, e);
     }
-  }
+  });
   if(coincident < ne) {
     const auto& ed = net.edges[std::size_t(coincident)];
     SPRING_MOTION_VERTEX_CHECK(false, ed[0], "coincident vertices " << ed[0] << " and " << ed[1]
@@ -528,44 +535,46 @@ void add_element_matrices(const std::vector<typename Spring_network<D>::Point>& 
   std::exception_ptr error;
   for(std::size_t c = 0; c + 1 < colours.size(); ++c) {
     const long first = long(colours[c]), last = long(colours[c + 1]);
-#pragma omp parallel for schedule(dynamic) num_threads(nt)
-    for(long h = first; h < last; ++h) {
-      const long end = long(chunks[std::size_t(h) + 1]);
-      for(long s = long(chunks[std::size_t(h)]); s < end;) {
-        const Index* to = &dest[std::size_t(s) * (D + 1) * (D + 1)];
-        // the elements after this one (or pair, or four) requested
-        const long ahead = !prefetching                                    ? 0
-                           : Has_symmetric_blocks_of_four<Model, D>::value && fours ? 4
-                           : Has_symmetric_blocks_of_two<Model, D>::value  ? 2
-                                                                           : 1;
-        for(long a = s + prefetch_elements; a < std::min(end, s + prefetch_elements + ahead); ++a) {
-          prefetch_destinations<D>(&dest[std::size_t(a) * (D + 1) * (D + 1)], blocks);
-          prefetch_points<D>(vertices[std::size_t(a)], x);
+    in_team(nt, [&] {
+#pragma omp for schedule(dynamic)
+      for(long h = first; h < last; ++h) {
+        const long end = long(chunks[std::size_t(h) + 1]);
+        for(long s = long(chunks[std::size_t(h)]); s < end;) {
+          const Index* to = &dest[std::size_t(s) * (D + 1) * (D + 1)];
+          // the elements after this one (or pair, or four) requested
+          const long ahead = !prefetching                                    ? 0
+                             : Has_symmetric_blocks_of_four<Model, D>::value && fours ? 4
+                             : Has_symmetric_blocks_of_two<Model, D>::value  ? 2
+                                                                             : 1;
+          for(long a = s + prefetch_elements; a < std::min(end, s + prefetch_elements + ahead); ++a) {
+            prefetch_destinations<D>(&dest[std::size_t(a) * (D + 1) * (D + 1)], blocks);
+            prefetch_points<D>(vertices[std::size_t(a)], x);
+          }
+          if constexpr(Has_symmetric_blocks_of_four<Model, D>::value)
+            if(fours && s + 3 < end &&
+               add_element_matrices_of_four<D>({element_points<D>(vertices, x, std::size_t(s)),
+                                                element_points<D>(vertices, x, std::size_t(s + 1)),
+                                                element_points<D>(vertices, x, std::size_t(s + 2)),
+                                                element_points<D>(vertices, x, std::size_t(s + 3))},
+                                               model, &elements[std::size_t(s)], to, blocks, first_bad, error)) {
+              s += 4;
+              continue;
+            }
+          if constexpr(Has_symmetric_blocks_of_two<Model, D>::value)
+            if(s + 1 < end &&
+               add_element_matrices_of_two<D>(element_points<D>(vertices, x, std::size_t(s)),
+                                              element_points<D>(vertices, x, std::size_t(s + 1)), model,
+                                              elements[std::size_t(s)], elements[std::size_t(s + 1)], to,
+                                              to + (D + 1) * (D + 1), blocks, first_bad, error)) {
+              s += 2;
+              continue;
+            }
+          add_element_matrix<D>(element_points<D>(vertices, x, std::size_t(s)), model, elements[std::size_t(s)], to,
+                                blocks, first_bad, error);
+          ++s;
         }
-        if constexpr(Has_symmetric_blocks_of_four<Model, D>::value)
-          if(fours && s + 3 < end &&
-             add_element_matrices_of_four<D>({element_points<D>(vertices, x, std::size_t(s)),
-                                              element_points<D>(vertices, x, std::size_t(s + 1)),
-                                              element_points<D>(vertices, x, std::size_t(s + 2)),
-                                              element_points<D>(vertices, x, std::size_t(s + 3))},
-                                             model, &elements[std::size_t(s)], to, blocks, first_bad, error)) {
-            s += 4;
-            continue;
-          }
-        if constexpr(Has_symmetric_blocks_of_two<Model, D>::value)
-          if(s + 1 < end &&
-             add_element_matrices_of_two<D>(element_points<D>(vertices, x, std::size_t(s)),
-                                            element_points<D>(vertices, x, std::size_t(s + 1)), model,
-                                            elements[std::size_t(s)], elements[std::size_t(s + 1)], to,
-                                            to + (D + 1) * (D + 1), blocks, first_bad, error)) {
-            s += 2;
-            continue;
-          }
-        add_element_matrix<D>(element_points<D>(vertices, x, std::size_t(s)), model, elements[std::size_t(s)], to,
-                              blocks, first_bad, error);
-        ++s;
       }
-    }
+    });
   }
   if(error)
     std::rethrow_exception(error);
@@ -631,31 +640,33 @@ void assemble_block_system(const std::vector<typename Spring_network<D>::Point>&
         diag[r * D + c] += b;
       }
   };
-#pragma omp parallel for schedule(static) num_threads(internal::thread_count(threads, std::size_t(nf)))
-  for(long r = 0; r < nf; ++r) {
-    const std::size_t R = std::size_t(r);
-    const Index i = order[R];
-    double* diag = blocks + R * DD;
-    for(int c = 0; c < DD; ++c)
-      diag[c] = 0;
-    if(form == Edge_spring_form::none) { // a row's blocks lie together: cleared for the element matrices
-      if(upper)
-        std::fill(upper + std::size_t(offsets[R]) * S, upper + std::size_t(offsets[R + 1]) * S, 0.0);
-      else
-        std::fill(blocks + fs.off_block(offsets[R]) * DD, blocks + fs.off_block(offsets[R + 1]) * DD, 0.0);
-      std::fill(blocks + fs.bnd_block(bnd_offsets[R]) * DD, blocks + fs.bnd_block(bnd_offsets[R + 1]) * DD, 0.0);
-      continue;
+  in_team(internal::thread_count(threads, std::size_t(nf)), [&] {
+#pragma omp for schedule(static)
+    for(long r = 0; r < nf; ++r) {
+      const std::size_t R = std::size_t(r);
+      const Index i = order[R];
+      double* diag = blocks + R * DD;
+      for(int c = 0; c < DD; ++c)
+        diag[c] = 0;
+      if(form == Edge_spring_form::none) { // a row's blocks lie together: cleared for the element matrices
+        if(upper)
+          std::fill(upper + std::size_t(offsets[R]) * S, upper + std::size_t(offsets[R + 1]) * S, 0.0);
+        else
+          std::fill(blocks + fs.off_block(offsets[R]) * DD, blocks + fs.off_block(offsets[R + 1]) * DD, 0.0);
+        std::fill(blocks + fs.bnd_block(bnd_offsets[R]) * DD, blocks + fs.bnd_block(bnd_offsets[R + 1]) * DD, 0.0);
+        continue;
+      }
+      for(Index q = offsets[R]; q < offsets[R + 1]; ++q)
+        if(upper) {
+          std::array<double, DD> off;
+          spring(edge[q], i, order[col[q]], off.data(), diag);
+          copy_upper_triangle<D>(off.data(), upper + std::size_t(q) * S);
+        } else
+          spring(edge[q], i, order[col[q]], blocks + fs.off_block(q) * DD, diag);
+      for(Index q = bnd_offsets[R]; q < bnd_offsets[R + 1]; ++q)
+        spring(bnd_edge[q], i, bnd_vertex[q], blocks + fs.bnd_block(q) * DD, diag);
     }
-    for(Index q = offsets[R]; q < offsets[R + 1]; ++q)
-      if(upper) {
-        std::array<double, DD> off;
-        spring(edge[q], i, order[col[q]], off.data(), diag);
-        copy_upper_triangle<D>(off.data(), upper + std::size_t(q) * S);
-      } else
-        spring(edge[q], i, order[col[q]], blocks + fs.off_block(q) * DD, diag);
-    for(Index q = bnd_offsets[R]; q < bnd_offsets[R + 1]; ++q)
-      spring(bnd_edge[q], i, bnd_vertex[q], blocks + fs.bnd_block(q) * DD, diag);
-  }
+  });
   if constexpr(Is_element_model<Model, D>::value)
     add_element_matrices<D>(x, model, fs, threads);
   fs.apply_projectors(threads);

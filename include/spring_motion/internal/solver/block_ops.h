@@ -236,27 +236,32 @@ inline bool copy_to_single(const double* values, float* single, long n, int thre
   long k0 = 0;
 #if defined(__SSE2__)
   const long pairs = n / 2;
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(&& : fits)
-  for(long p = 0; p < pairs; ++p) {
-    const __m128d v = _mm_loadu_pd(values + 2 * p);
-    const __m128d a = _mm_andnot_pd(_mm_set1_pd(-0.0), v);
-    const __m128d ok = _mm_or_pd(_mm_cmpeq_pd(a, _mm_setzero_pd()),
-                                 _mm_and_pd(_mm_cmpge_pd(a, _mm_set1_pd(single_low)),
-                                            _mm_cmple_pd(a, _mm_set1_pd(single_high))));
-    // two floats (8 bytes) from the low half; __m64 may alias them
-    _mm_storel_pi(reinterpret_cast<__m64*>(single + 2 * p), _mm_cvtpd_ps(_mm_and_pd(v, ok)));
-    fits = fits && _mm_movemask_pd(ok) == 3;
-  }
+  in_team(threads, [&] {
+#pragma omp for schedule(static) reduction(&& : fits)
+    for(long p = 0; p < pairs; ++p) {
+      const __m128d v = _mm_loadu_pd(values + 2 * p);
+      const __m128d a = _mm_andnot_pd(_mm_set1_pd(-0.0), v);
+      const __m128d ok = _mm_or_pd(_mm_cmpeq_pd(a, _mm_setzero_pd()),
+                                   _mm_and_pd(_mm_cmpge_pd(a, _mm_set1_pd(single_low)),
+                                              _mm_cmple_pd(a, _mm_set1_pd(single_high))));
+      // two floats (8 bytes) from the low half; __m64 may alias them
+      _mm_storel_pi(reinterpret_cast<__m64*>(single + 2 * p), _mm_cvtpd_ps(_mm_and_pd(v, ok)));
+      fits = fits && _mm_movemask_pd(ok) == 3;
+    }
+  });
   k0 = 2 * pairs;
-#else
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(&& : fits)
 #endif
-  for(long k = k0; k < n; ++k) {
-    const double v = values[k];
-    const bool f = fits_single(v);
-    single[k] = float(f ? v : 0.0);
-    fits = fits && f;
-  }
+  // the odd last value after the pairs (on the calling thread), or, without
+  // SSE2, every value
+  in_team(k0 == 0 ? threads : 1, [&] {
+#pragma omp for schedule(static) reduction(&& : fits)
+    for(long k = k0; k < n; ++k) {
+      const double v = values[k];
+      const bool f = fits_single(v);
+      single[k] = float(f ? v : 0.0);
+      fits = fits && f;
+    }
+  });
   return fits;
 }
 
@@ -269,20 +274,22 @@ inline bool copy_to_single_by_columns(const double* values, float* single, long 
 {
   constexpr int DD = D * D;
   bool fits = true;
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(&& : fits)
-  for(long q = 0; q < blocks; ++q) {
-    const double* m = values + std::size_t(q) * DD;
-    float* t = single + std::size_t(q) * DD;
-    bool block_fits = true;
-    for(int r = 0; r < D; ++r)
-      for(int c = 0; c < D; ++c) {
-        const double a = m[r * D + c];
-        const bool f = fits_single(a);
-        t[c * D + r] = float(f ? a : 0.0);
-        block_fits &= f;
-      }
-    fits = fits && block_fits;
-  }
+  in_team(threads, [&] {
+#pragma omp for schedule(static) reduction(&& : fits)
+    for(long q = 0; q < blocks; ++q) {
+      const double* m = values + std::size_t(q) * DD;
+      float* t = single + std::size_t(q) * DD;
+      bool block_fits = true;
+      for(int r = 0; r < D; ++r)
+        for(int c = 0; c < D; ++c) {
+          const double a = m[r * D + c];
+          const bool f = fits_single(a);
+          t[c * D + r] = float(f ? a : 0.0);
+          block_fits &= f;
+        }
+      fits = fits && block_fits;
+    }
+  });
   return fits;
 }
 

@@ -354,30 +354,32 @@ public:
       std::copy(t.begin(), t.end(), B);
     };
     const long nf = long(order_.size());
-#pragma omp parallel for schedule(static) num_threads(team(threads))
-    for(long r = 0; r < nf; ++r) {
-      const std::size_t R = std::size_t(r);
-      const double* P = proj(Index(R));
-      for(Index q = row_offsets_[R]; q < row_offsets_[R + 1]; ++q) {
-        const double* Q = proj(col_[q]);
-        if(P)
-          left(P, &blocks_[off_block(q) * DD]);
-        if(Q)
-          right(&blocks_[off_block(q) * DD], Q);
+    in_team(team(threads), [&] {
+#pragma omp for schedule(static)
+      for(long r = 0; r < nf; ++r) {
+        const std::size_t R = std::size_t(r);
+        const double* P = proj(Index(R));
+        for(Index q = row_offsets_[R]; q < row_offsets_[R + 1]; ++q) {
+          const double* Q = proj(col_[q]);
+          if(P)
+            left(P, &blocks_[off_block(q) * DD]);
+          if(Q)
+            right(&blocks_[off_block(q) * DD], Q);
+        }
+        if(!P)
+          continue;
+        for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
+          left(P, &blocks_[bnd_block(q) * DD]);
+        double* d = &blocks_[R * DD];
+        double trace = 0;
+        for(int c = 0; c < D; ++c)
+          trace += d[c * D + c];
+        left(P, d);
+        right(d, P);
+        for(int i = 0; i < DD; ++i)
+          d[i] += (trace / D) * ((i / D == i % D ? 1.0 : 0.0) - P[i]);
       }
-      if(!P)
-        continue;
-      for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
-        left(P, &blocks_[bnd_block(q) * DD]);
-      double* d = &blocks_[R * DD];
-      double trace = 0;
-      for(int c = 0; c < D; ++c)
-        trace += d[c * D + c];
-      left(P, d);
-      right(d, P);
-      for(int i = 0; i < DD; ++i)
-        d[i] += (trace / D) * ((i / D == i % D ? 1.0 : 0.0) - P[i]);
-    }
+    });
   }
 
   /// This step's values of a scalar system from the edge stiffness k (one
@@ -386,39 +388,41 @@ public:
   {
     const long nf = long(order_.size());
     long bad = nf;
-#pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(min : bad)
-    for(long r = 0; r < nf; ++r) {
-      const std::size_t R = std::size_t(r);
-      // The rows visit their vertices' springs in the network's order: a
-      // cache miss for the vertex's offsets and one for its springs per row
-      // on a large mesh (the rows are in the solver's order), most of this
-      // loop on the wing. Both are fetched ahead, the offsets twice as far.
-      // (Written here: GCC 12 dropped these prefetches, at -O1 and above,
-      // when they stood alone in a member function called from here.)
-      if(r + 2 * prefetch_rows < nf)
-        __builtin_prefetch(&net.adjacency_offsets[order_[std::size_t(r + 2 * prefetch_rows)]]);
-      if(r + prefetch_rows < nf) {
-        const Index v = order_[std::size_t(r + prefetch_rows)];
-        const Index b = net.adjacency_offsets[v], e = net.adjacency_offsets[v + 1];
-        if(b < e) {
-          __builtin_prefetch(&net.adjacency_edge[b]);
-          __builtin_prefetch(&net.adjacency_edge[e - 1]);
+    in_team(team(threads), [&] {
+#pragma omp for schedule(static) reduction(min : bad)
+      for(long r = 0; r < nf; ++r) {
+        const std::size_t R = std::size_t(r);
+        // The rows visit their vertices' springs in the network's order: a
+        // cache miss for the vertex's offsets and one for its springs per row
+        // on a large mesh (the rows are in the solver's order), most of this
+        // loop on the wing. Both are fetched ahead, the offsets twice as far.
+        // (Written here: GCC 12 dropped these prefetches, at -O1 and above,
+        // when they stood alone in a member function called from here.)
+        if(r + 2 * prefetch_rows < nf)
+          __builtin_prefetch(&net.adjacency_offsets[order_[std::size_t(r + 2 * prefetch_rows)]]);
+        if(r + prefetch_rows < nf) {
+          const Index v = order_[std::size_t(r + prefetch_rows)];
+          const Index b = net.adjacency_offsets[v], e = net.adjacency_offsets[v + 1];
+          if(b < e) {
+            __builtin_prefetch(&net.adjacency_edge[b]);
+            __builtin_prefetch(&net.adjacency_edge[e - 1]);
+          }
         }
+        for(Index q = row_offsets_[R]; q < row_offsets_[R + 1]; ++q)
+          val_[q] = -k[edge_[q]];
+        for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
+          bnd_val_[q] = -k[bnd_edge_[q]];
+        // summed in network order, as the vertex's springs are listed
+        const Index i = order_[R];
+        double d = 0;
+        for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p)
+          d += k[net.adjacency_edge[p]];
+        diag_[R] = d;
+        inv_diag_[R] = 1.0 / d;
+        if(!(d > 0 && std::isfinite(d)) && r < bad)
+          bad = r;
       }
-      for(Index q = row_offsets_[R]; q < row_offsets_[R + 1]; ++q)
-        val_[q] = -k[edge_[q]];
-      for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
-        bnd_val_[q] = -k[bnd_edge_[q]];
-      // summed in network order, as the vertex's springs are listed
-      const Index i = order_[R];
-      double d = 0;
-      for(Index p = net.adjacency_offsets[i]; p < net.adjacency_offsets[i + 1]; ++p)
-        d += k[net.adjacency_edge[p]];
-      diag_[R] = d;
-      inv_diag_[R] = 1.0 / d;
-      if(!(d > 0 && std::isfinite(d)) && r < bad)
-        bad = r;
-    }
+    });
     if(bad < nf)
       SPRING_MOTION_VERTEX_CHECK(false, order_[std::size_t(bad)],
                                  "free vertex " << order_[std::size_t(bad)] << " has zero total stiffness ("
@@ -440,10 +444,12 @@ public:
     product_upper_ = off_upper_; // unless the load wrote the upper triangles themselves
     const long nf = long(order_.size());
     long bad = nf;
-#pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(min : bad)
-    for(long r = 0; r < nf; ++r)
-      if(!invert_block<D>(&blocks_[std::size_t(r) * DD], &inv_diag_[std::size_t(r) * DD]) && r < bad)
-        bad = r;
+    in_team(team(threads), [&] {
+#pragma omp for schedule(static) reduction(min : bad)
+      for(long r = 0; r < nf; ++r)
+        if(!invert_block<D>(&blocks_[std::size_t(r) * DD], &inv_diag_[std::size_t(r) * DD]) && r < bad)
+          bad = r;
+    });
     if(bad < nf) {
       const double* m = &blocks_[std::size_t(bad) * DD];
       std::ostringstream block;
@@ -462,22 +468,24 @@ public:
   void set_start(const std::vector<Row>& x, int threads)
   {
     const long nf = long(order_.size());
-#pragma omp parallel for schedule(static) num_threads(team(threads))
-    for(long r = 0; r < nf; ++r) {
-      const std::size_t R = std::size_t(r);
-      Row s{};
-      if(block_)
-        for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
-          subtract_block_product<D>(s, &blocks_[bnd_block(q) * DD], x[bnd_vertex_[q]]);
-      else
-        for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
-          for(int c = 0; c < D; ++c)
-            s[c] -= bnd_val_[q] * x[bnd_vertex_[q]][c];
-      b_[R] = s;
-      x_[R] = x[order_[R]];
-      if(!projector_of_row_.empty() && projector_of_row_[R] != none)
-        x_[R] = block_product<D>(projectors_[projector_of_row_[R]].data(), x_[R]);
-    }
+    in_team(team(threads), [&] {
+#pragma omp for schedule(static)
+      for(long r = 0; r < nf; ++r) {
+        const std::size_t R = std::size_t(r);
+        Row s{};
+        if(block_)
+          for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
+            subtract_block_product<D>(s, &blocks_[bnd_block(q) * DD], x[bnd_vertex_[q]]);
+        else
+          for(Index q = bnd_offsets_[R]; q < bnd_offsets_[R + 1]; ++q)
+            for(int c = 0; c < D; ++c)
+              s[c] -= bnd_val_[q] * x[bnd_vertex_[q]][c];
+        b_[R] = s;
+        x_[R] = x[order_[R]];
+        if(!projector_of_row_.empty() && projector_of_row_[R] != none)
+          x_[R] = block_product<D>(projectors_[projector_of_row_[R]].data(), x_[R]);
+      }
+    });
   }
 
   /// Replaces the iterate by a solution computed elsewhere (one entry per
@@ -493,9 +501,11 @@ public:
   void store(std::vector<Row>& x, int threads = 1) const
   {
     const long nf = long(order_.size());
-#pragma omp parallel for schedule(static) num_threads(team(threads))
-    for(long r = 0; r < nf; ++r)
-      x[order_[std::size_t(r)]] = x_[std::size_t(r)];
+    in_team(team(threads), [&] {
+#pragma omp for schedule(static)
+      for(long r = 0; r < nf; ++r)
+        x[order_[std::size_t(r)]] = x_[std::size_t(r)];
+    });
   }
 
   /// One SOR sweep in the solver's order on the loaded system; returns the
@@ -864,47 +874,59 @@ private:
     double m = 0;
     for(std::size_t cc = 0; cc < nc; ++cc) {
       const std::size_t colour = forward ? cc : nc - 1 - cc;
-      const long first = long(colour_offsets_[colour]), last = long(colour_offsets_[colour + 1]);
       double cm = 0;
-#pragma omp parallel for schedule(static) num_threads(nt) reduction(max : cm)
-      for(long bq = first; bq < last; ++bq) {
-        const long rb = long(block_offsets_[std::size_t(bq)]), re = long(block_offsets_[std::size_t(bq) + 1]);
-        for(long kk = 0; kk < re - rb; ++kk) {
-          const std::size_t K = std::size_t(forward ? rb + kk : re - 1 - kk);
-          if(!forward && K >= backward_prefetch_rows)
-            prefetch_row<B, Upper>(off, K - backward_prefetch_rows);
-          const Index row_end = from_zero ? upper_offsets_[K] : row_offsets_[K + 1];
-          const Row s = off_residual<B, V, Upper>(x, rhs[K], row_offsets_[K], row_end, off);
-          Row y;
-          if constexpr(B) // the block row's local solve D_K^{-1} s, relaxed
-            y = block_product<D>(&inv_diag_[K * DD], s);
-          if(track)
-            for(int c = 0; c < D; ++c) {
-              const double old = from_zero ? 0.0 : x[K][c];
-              double nv;
-              if constexpr(B)
-                nv = (1 - omega) * old + omega * y[c];
-              else
-                nv = (1 - omega) * old + omega * s[c] * inv_diag_[K];
-              const double d = std::abs(nv - old);
-              // a NaN must stick: !(d <= cm) holds for NaN, which becomes +inf
-              if(!(d <= cm))
-                cm = std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
-              x[K][c] = nv;
-            }
-          else
-            for(int c = 0; c < D; ++c) {
-              const double old = from_zero ? 0.0 : x[K][c];
-              if constexpr(B)
-                x[K][c] = omega == 1 ? y[c] : (1 - omega) * old + omega * y[c];
-              else
-                x[K][c] = omega == 1 ? s[c] * inv_diag_[K] : (1 - omega) * old + omega * s[c] * inv_diag_[K];
-            }
-        }
-      }
+      in_team(nt, [&] { sweep_colour<B, V, Upper>(x, rhs, off, omega, colour, forward, track, from_zero, cm); });
       sticky_max(m, cm);
     }
     return m;
+  }
+
+  // One colour of `sweep`, its blocks shared out by the team that calls it
+  // (an orphaned loop); cm (shared by the team) raised to the largest
+  // change when `track`. Its own function, the parameters by value: in a
+  // lambda capturing them by reference, GCC read omega and the flags again
+  // after every store to x.
+  template <bool B, class V, bool Upper>
+  void sweep_colour(std::vector<Row>& x, const std::vector<Row>& rhs, const V* off, double omega, std::size_t colour,
+                    bool forward, bool track, bool from_zero, double& cm)
+  {
+    const long first = long(colour_offsets_[colour]), last = long(colour_offsets_[colour + 1]);
+#pragma omp for schedule(static) reduction(max : cm)
+    for(long bq = first; bq < last; ++bq) {
+      const long rb = long(block_offsets_[std::size_t(bq)]), re = long(block_offsets_[std::size_t(bq) + 1]);
+      for(long kk = 0; kk < re - rb; ++kk) {
+        const std::size_t K = std::size_t(forward ? rb + kk : re - 1 - kk);
+        if(!forward && K >= backward_prefetch_rows)
+          prefetch_row<B, Upper>(off, K - backward_prefetch_rows);
+        const Index row_end = from_zero ? upper_offsets_[K] : row_offsets_[K + 1];
+        const Row s = off_residual<B, V, Upper>(x, rhs[K], row_offsets_[K], row_end, off);
+        Row y;
+        if constexpr(B) // the block row's local solve D_K^{-1} s, relaxed
+          y = block_product<D>(&inv_diag_[K * DD], s);
+        if(track)
+          for(int c = 0; c < D; ++c) {
+            const double old = from_zero ? 0.0 : x[K][c];
+            double nv;
+            if constexpr(B)
+              nv = (1 - omega) * old + omega * y[c];
+            else
+              nv = (1 - omega) * old + omega * s[c] * inv_diag_[K];
+            const double d = std::abs(nv - old);
+            // a NaN must stick: !(d <= cm) holds for NaN, which becomes +inf
+            if(!(d <= cm))
+              cm = std::isnan(d) ? std::numeric_limits<double>::infinity() : d;
+            x[K][c] = nv;
+          }
+        else
+          for(int c = 0; c < D; ++c) {
+            const double old = from_zero ? 0.0 : x[K][c];
+            if constexpr(B)
+              x[K][c] = omega == 1 ? y[c] : (1 - omega) * old + omega * y[c];
+            else
+              x[K][c] = omega == 1 ? s[c] * inv_diag_[K] : (1 - omega) * old + omega * s[c] * inv_diag_[K];
+          }
+      }
+    }
   }
 
   // one forward SOR sweep of x_ on the loaded values (whole blocks, or the
@@ -956,12 +978,14 @@ private:
     if constexpr(B)
       prepare_block_copies(threads);
     // r = b - A x
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long k = 0; k < nf; ++k) {
-      const Row y = apply<B>(x_, std::size_t(k));
-      for(int c = 0; c < D; ++c)
-        r_[std::size_t(k)][c] = b_[std::size_t(k)][c] - y[c];
-    }
+    in_team(nt, [&] {
+#pragma omp for schedule(static)
+      for(long k = 0; k < nf; ++k) {
+        const Row y = apply<B>(x_, std::size_t(k));
+        for(int c = 0; c < D; ++c)
+          r_[std::size_t(k)][c] = b_[std::size_t(k)][c] - y[c];
+      }
+    });
     const double r_max = max_abs(r_, threads);
     SPRING_MOTION_CHECK(std::isfinite(r_max), "the solver's initial residual is not finite");
     Stopping_test stop(options);
@@ -974,9 +998,11 @@ private:
       copy(z_, p_, threads);
       double rz = dot(r_, z_, threads);
       while(report.iterations < options.max_iterations) {
-#pragma omp parallel for schedule(static) num_threads(nt)
-        for(long k = 0; k < nf; ++k)
-          q_[std::size_t(k)] = apply<B>(p_, std::size_t(k));
+        in_team(nt, [&] {
+#pragma omp for schedule(static)
+          for(long k = 0; k < nf; ++k)
+            q_[std::size_t(k)] = apply<B>(p_, std::size_t(k));
+        });
         const double pq = dot(p_, q_, threads);
         if(!(pq > 0)) // p = 0: the residual vanished exactly
           break;
@@ -993,10 +1019,12 @@ private:
         const double rz_new = dot(r_, z_, threads);
         const double beta = rz_new / rz;
         rz = rz_new;
-#pragma omp parallel for schedule(static) num_threads(nt)
-        for(long k = 0; k < nf; ++k)
-          for(int c = 0; c < D; ++c)
-            p_[std::size_t(k)][c] = z_[std::size_t(k)][c] + beta * p_[std::size_t(k)][c];
+        in_team(nt, [&] {
+#pragma omp for schedule(static)
+          for(long k = 0; k < nf; ++k)
+            for(int c = 0; c < D; ++c)
+              p_[std::size_t(k)][c] = z_[std::size_t(k)][c] + beta * p_[std::size_t(k)][c];
+        });
       }
     }
     if(pc.cycle && report.converged)
@@ -1151,34 +1179,38 @@ private:
     bool fits = true, symmetric = true;
     upper_off_.resize(nb * UD);
     single_off_.resize(nb * UD);
-#pragma omp parallel for schedule(static) num_threads(team(threads)) reduction(&& : fits, symmetric)
-    for(long q = 0; q < long(nb); ++q) {
-      const double* m = v + std::size_t(q) * DD;
-      // & rather than &&: every entry tested, no early exit to branch on
-      bool block_fits = true, block_symmetric = true;
-      for(int k = 0; k < DD; ++k)
-        block_fits &= fits_single(m[k]);
-      for(int r = 0; r < D; ++r)
-        for(int c = r + 1; c < D; ++c)
-          block_symmetric &= m[r * D + c] == m[c * D + r];
-      fits = fits && block_fits;
-      symmetric = symmetric && block_symmetric;
-      copy_upper_triangle<D>(m, &upper_off_[std::size_t(q) * UD]);
-      if(block_fits)
-        copy_upper_triangle<D>(m, &single_off_[std::size_t(q) * UD]);
-    }
+    in_team(team(threads), [&] {
+#pragma omp for schedule(static) reduction(&& : fits, symmetric)
+      for(long q = 0; q < long(nb); ++q) {
+        const double* m = v + std::size_t(q) * DD;
+        // & rather than &&: every entry tested, no early exit to branch on
+        bool block_fits = true, block_symmetric = true;
+        for(int k = 0; k < DD; ++k)
+          block_fits &= fits_single(m[k]);
+        for(int r = 0; r < D; ++r)
+          for(int c = r + 1; c < D; ++c)
+            block_symmetric &= m[r * D + c] == m[c * D + r];
+        fits = fits && block_fits;
+        symmetric = symmetric && block_symmetric;
+        copy_upper_triangle<D>(m, &upper_off_[std::size_t(q) * UD]);
+        if(block_fits)
+          copy_upper_triangle<D>(m, &single_off_[std::size_t(q) * UD]);
+      }
+    });
     single_fits_ = fits;
     product_upper_ = symmetric;
     if(!fits || symmetric)
       return;
     single_off_.resize(nb * DD);
-#pragma omp parallel for schedule(static) num_threads(team(threads))
-    for(long q = 0; q < long(nb); ++q) {
-      const double* m = v + std::size_t(q) * DD;
-      float* out = &single_off_[std::size_t(q) * DD];
-      for(int k = 0; k < DD; ++k)
-        out[k] = float(m[k]);
-    }
+    in_team(team(threads), [&] {
+#pragma omp for schedule(static)
+      for(long q = 0; q < long(nb); ++q) {
+        const double* m = v + std::size_t(q) * DD;
+        float* out = &single_off_[std::size_t(q) * DD];
+        for(int k = 0; k < DD; ++k)
+          out[k] = float(m[k]);
+      }
+    });
   }
 
   // values(): the whole off-diagonal blocks of an upper load, from their
@@ -1206,37 +1238,45 @@ private:
       // Rows of the first colours hold most of the entries after them in the
       // solver's order, the last colours' rows almost none: equal ranges of
       // rows would leave one thread most of the work.
-#pragma omp parallel for schedule(dynamic, 256) num_threads(nt)
-      for(long k = 0; k < nf; ++k)
-        s_[std::size_t(k)] =
-            off_residual<B, V, Upper>(z_, Row{}, upper_offsets_[std::size_t(k)], row_offsets_[std::size_t(k) + 1], off);
+      in_team(nt, [&] {
+#pragma omp for schedule(dynamic, 256)
+        for(long k = 0; k < nf; ++k)
+          s_[std::size_t(k)] =
+              off_residual<B, V, Upper>(z_, Row{}, upper_offsets_[std::size_t(k)], row_offsets_[std::size_t(k) + 1], off);
+      });
     } else {
-#pragma omp parallel for schedule(static) num_threads(nt)
-      for(long k = 0; k < nf; ++k) {
-        const Row y = apply<B>(z_, std::size_t(k));
-        for(int c = 0; c < D; ++c)
-          s_[std::size_t(k)][c] = r_[std::size_t(k)][c] - y[c];
-      }
+      in_team(nt, [&] {
+#pragma omp for schedule(static)
+        for(long k = 0; k < nf; ++k) {
+          const Row y = apply<B>(z_, std::size_t(k));
+          for(int c = 0; c < D; ++c)
+            s_[std::size_t(k)][c] = r_[std::size_t(k)][c] - y[c];
+        }
+      });
     }
     const double a = multigrid_.parameters.correction;
     if constexpr(B) {
       rigid_.restrict_from(s_, threads);
       rigid_.cycle(threads);
-#pragma omp parallel for schedule(static) num_threads(nt)
-      for(long k = 0; k < nf; ++k) {
-        const Row e = rigid_.correction(std::size_t(k));
-        for(int c = 0; c < D; ++c)
-          z_[std::size_t(k)][c] += a * e[c];
-      }
+      in_team(nt, [&] {
+#pragma omp for schedule(static)
+        for(long k = 0; k < nf; ++k) {
+          const Row e = rigid_.correction(std::size_t(k));
+          for(int c = 0; c < D; ++c)
+            z_[std::size_t(k)][c] += a * e[c];
+        }
+      });
     } else {
       multigrid_.restrict_from(s_);
       multigrid_.cycle();
-#pragma omp parallel for schedule(static) num_threads(nt)
-      for(long k = 0; k < nf; ++k) {
-        const Row& e = multigrid_.coarse_solution(multigrid_.parent(std::size_t(k)));
-        for(int c = 0; c < D; ++c)
-          z_[std::size_t(k)][c] += a * e[c];
-      }
+      in_team(nt, [&] {
+#pragma omp for schedule(static)
+        for(long k = 0; k < nf; ++k) {
+          const Row& e = multigrid_.coarse_solution(multigrid_.parent(std::size_t(k)));
+          for(int c = 0; c < D; ++c)
+            z_[std::size_t(k)][c] += a * e[c];
+        }
+      });
     }
   }
 
@@ -1244,9 +1284,11 @@ private:
   {
     const int nt = team(threads);
     const long nf = long(a.size());
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long k = 0; k < nf; ++k)
-      b[std::size_t(k)] = a[std::size_t(k)];
+    in_team(nt, [&] {
+#pragma omp for schedule(static)
+      for(long k = 0; k < nf; ++k)
+        b[std::size_t(k)] = a[std::size_t(k)];
+    });
   }
 
   // Fixed-chunk reductions: body(begin, end) reduces the rows [begin, end)
@@ -1259,11 +1301,13 @@ private:
     const long chunks = long((nf + reduction_chunk - 1) / reduction_chunk);
     partial_.assign(std::size_t(chunks), 0.0);
     const int nt = team(threads);
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long ch = 0; ch < chunks; ++ch) {
-      const std::size_t b = std::size_t(ch) * reduction_chunk;
-      partial_[std::size_t(ch)] = body(b, std::min(nf, b + reduction_chunk));
-    }
+    in_team(nt, [&] {
+#pragma omp for schedule(static)
+      for(long ch = 0; ch < chunks; ++ch) {
+        const std::size_t b = std::size_t(ch) * reduction_chunk;
+        partial_[std::size_t(ch)] = body(b, std::min(nf, b + reduction_chunk));
+      }
+    });
     double m = 0;
     for(double v : partial_)
       m = combine(m, v);

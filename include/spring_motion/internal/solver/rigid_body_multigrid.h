@@ -184,10 +184,12 @@ public:
         cycle(0, threads);
       else
         with_sweep_values(L, [&](const auto* v) { cycle_on_residual(threads, v); });
-#pragma omp parallel for schedule(static) num_threads(nt)
-      for(long i = 0; i < n; ++i)
-        for(int c = 0; c < R; ++c)
-          sum_[std::size_t(i)][c] += L.z[std::size_t(i)][c];
+      in_team(nt, [&] {
+#pragma omp for schedule(static)
+        for(long i = 0; i < n; ++i)
+          for(int c = 0; c < R; ++c)
+            sum_[std::size_t(i)][c] += L.z[std::size_t(i)][c];
+      });
     }
     L.z.swap(sum_);
     L.rhs.swap(rhs0_);
@@ -363,20 +365,22 @@ private:
     const long na = long(C.n);
     const Index nm = Index(C.members.size());
     auto restrict_all = [&](auto requesting) {
-#pragma omp parallel for schedule(static) num_threads(nt)
-      for(long a = 0; a < na; ++a) {
-        Coarse_row rc{};
-        for(Index m = C.member_offsets[std::size_t(a)]; m < C.member_offsets[std::size_t(a) + 1]; ++m) {
-          if constexpr(decltype(requesting)::value)
-            if(m + ahead_members < nm) {
-              const Index f = C.members[m + ahead_members];
-              prefetch_range(&s[f], &s[f] + 1);
-              prefetch_range(&C.offset[f], &C.offset[f] + 1);
-            }
-          add_restricted<int(F)>(s[C.members[m]].data(), C.offset[C.members[m]], rc);
+      in_team(nt, [&] {
+#pragma omp for schedule(static)
+        for(long a = 0; a < na; ++a) {
+          Coarse_row rc{};
+          for(Index m = C.member_offsets[std::size_t(a)]; m < C.member_offsets[std::size_t(a) + 1]; ++m) {
+            if constexpr(decltype(requesting)::value)
+              if(m + ahead_members < nm) {
+                const Index f = C.members[m + ahead_members];
+                prefetch_range(&s[f], &s[f] + 1);
+                prefetch_range(&C.offset[f], &C.offset[f] + 1);
+              }
+            add_restricted<int(F)>(s[C.members[m]].data(), C.offset[C.members[m]], rc);
+          }
+          C.rhs[std::size_t(a)] = rc;
         }
-        C.rhs[std::size_t(a)] = rc;
-      }
+      });
     };
     if(std::size_t(nm) * (sizeof(s[0]) + sizeof(Row)) > prefetch_members_above)
       restrict_all(std::true_type{});
@@ -838,25 +842,29 @@ private:
     // ahead (prefetch_row), then restricted aggregate by aggregate: formed
     // in the restriction's order, the members of an aggregate lie scattered
     // over the level and most reads of their blocks waited on memory
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long i = 0; i < n; ++i) {
-      if(std::size_t(i) + ahead_rows < L.n)
-        prefetch_row(L, v, std::size_t(i) + ahead_rows);
-      L.residual[std::size_t(i)] = residual_after_forward_sweep(L, v, std::size_t(i));
-    }
+    in_team(nt, [&] {
+#pragma omp for schedule(static)
+      for(long i = 0; i < n; ++i) {
+        if(std::size_t(i) + ahead_rows < L.n)
+          prefetch_row(L, v, std::size_t(i) + ahead_rows);
+        L.residual[std::size_t(i)] = residual_after_forward_sweep(L, v, std::size_t(i));
+      }
+    });
     restrict_to(C, L.residual, nt);
     cycle(l + 1, threads);
     const double a = parameters.correction;
-#pragma omp parallel for schedule(static) num_threads(nt)
-    for(long i = 0; i < n; ++i) {
-      const Coarse_row& Z = C.z[C.parent_of[std::size_t(i)]];
-      Row u{};
-      add_rotation(Z, C.offset[std::size_t(i)], u.data());
-      for(int c = 0; c < D; ++c)
-        L.z[std::size_t(i)][c] += a * (Z[c] + u[c]);
-      for(int k = D; k < R; ++k)
-        L.z[std::size_t(i)][k] += a * Z[k];
-    }
+    in_team(nt, [&] {
+#pragma omp for schedule(static)
+      for(long i = 0; i < n; ++i) {
+        const Coarse_row& Z = C.z[C.parent_of[std::size_t(i)]];
+        Row u{};
+        add_rotation(Z, C.offset[std::size_t(i)], u.data());
+        for(int c = 0; c < D; ++c)
+          L.z[std::size_t(i)][c] += a * (Z[c] + u[c]);
+        for(int k = D; k < R; ++k)
+          L.z[std::size_t(i)][k] += a * Z[k];
+      }
+    });
     backward_gauss_seidel(L, v);
   }
 

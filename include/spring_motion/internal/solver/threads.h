@@ -106,6 +106,33 @@ inline void move_off_cpu(int cpu)
 #endif
 }
 
+/// Runs `f` on a team of `threads` threads (a parallel region; at least 1),
+/// whose worksharing loops (`#pragma omp for` inside `f`) share out their
+/// iterations; with one thread, on the calling thread outside any region,
+/// where the same loops run whole (an orphaned `omp for`), in the same
+/// order. Why: libgomp sets up a team for a region of one thread as well and
+/// ends it with a futex wake-up, a system call, whoever waits: about 1.4 us
+/// a region on the virtual machines measured here, and a step of the 2D
+/// paper mesh, which the thread chooser runs on one thread, enters some 75
+/// of them (docs/performance.md, "One-thread loops outside OpenMP's
+/// regions"). Called inside a parallel region (a caller's own threads each
+/// moving a mesh), a team of one is a region again: there an orphaned loop
+/// would share its iterations among the caller's threads.
+template <class F>
+void in_team(int threads, F&& f)
+{
+#ifdef _OPENMP
+  if(threads > 1 || omp_get_level() > 0) {
+#pragma omp parallel num_threads(threads > 1 ? threads : 1)
+    f();
+    return;
+  }
+#else
+  (void)threads;
+#endif
+  f();
+}
+
 /// Runs `f` on the calling thread inside a parallel region of `threads`
 /// threads (OpenMP's default when 0) whose other threads do nothing, and
 /// returns the count of threads that ran the region, once all have. Why: a

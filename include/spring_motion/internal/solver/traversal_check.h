@@ -31,10 +31,12 @@ std::vector<signed char> traversal_orientations(const Angle_slots& slots, const 
 {
   const long m = long(slots.ordered_elements.size() / (D + 1));
   std::vector<signed char> sign(static_cast<std::size_t>(m));
-#pragma omp parallel for schedule(static) num_threads(thread_count(threads, std::size_t(m)))
-  for(long i = 0; i < m; ++i)
-    sign[std::size_t(i)] =
-        static_cast<signed char>(exact_orientation(traversal_element_points<D>(slots, xt, std::size_t(i))));
+  in_team(thread_count(threads, std::size_t(m)), [&] {
+#pragma omp for schedule(static)
+    for(long i = 0; i < m; ++i)
+      sign[std::size_t(i)] =
+          static_cast<signed char>(exact_orientation(traversal_element_points<D>(slots, xt, std::size_t(i))));
+  });
   return sign;
 }
 
@@ -55,17 +57,21 @@ bool orientation_changed(const Angle_slots& slots, const std::vector<std::array<
     // paired with itself
     const long pairs = (m + 1) / 2;
     // thread-safe: the filtered predicates keep their rounding-mode state per call
-#pragma omp parallel for schedule(static) num_threads(thread_count(threads, std::size_t(m))) reduction(|| : changed)
-    for(long h = 0; h < pairs; ++h) {
-      const std::size_t i = 2 * std::size_t(h), j = std::min(i + 1, std::size_t(m) - 1);
-      const auto s =
-          coarse_orientations(traversal_element_corners<3>(slots, xt, i), traversal_element_corners<3>(slots, xt, j));
-      changed = changed || (s[0] != 0 ? s[0] != sign[i] : differs(i)) || (s[1] != 0 ? s[1] != sign[j] : differs(j));
-    }
+    in_team(thread_count(threads, std::size_t(m)), [&] {
+#pragma omp for schedule(static) reduction(|| : changed)
+      for(long h = 0; h < pairs; ++h) {
+        const std::size_t i = 2 * std::size_t(h), j = std::min(i + 1, std::size_t(m) - 1);
+        const auto s =
+            coarse_orientations(traversal_element_corners<3>(slots, xt, i), traversal_element_corners<3>(slots, xt, j));
+        changed = changed || (s[0] != 0 ? s[0] != sign[i] : differs(i)) || (s[1] != 0 ? s[1] != sign[j] : differs(j));
+      }
+    });
   } else {
-#pragma omp parallel for schedule(static) num_threads(thread_count(threads, std::size_t(m))) reduction(|| : changed)
-    for(long i = 0; i < m; ++i)
-      changed = changed || differs(std::size_t(i));
+    in_team(thread_count(threads, std::size_t(m)), [&] {
+#pragma omp for schedule(static) reduction(|| : changed)
+      for(long i = 0; i < m; ++i)
+        changed = changed || differs(std::size_t(i));
+    });
   }
   return changed;
 }

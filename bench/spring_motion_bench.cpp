@@ -1050,8 +1050,8 @@ const char* const gnu_time = "/usr/bin/time";
 // Started by posix_spawn, which glibc runs as a vfork (the child shares this
 // process's memory until its exec), not by fork: fork copies the page tables
 // of the benchmark, several hundred MiB resident after the box, and that
-// copy was timed as part of the command's run (the 2D paper case read 0.155
-// s here against 0.125 s from a shell, docs/performance.md).
+// copy was timed as part of the command's run (the 2D paper case read about
+// 30 ms slower here than from a shell).
 Process_stats run_process(const std::vector<std::string>& args, const std::string& log)
 {
   const bool timed = access(gnu_time, X_OK) == 0;

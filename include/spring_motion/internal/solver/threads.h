@@ -114,8 +114,8 @@ inline void move_off_cpu(int cpu)
 /// ends it with a futex wake-up, a system call, whoever waits: about 1.4 us
 /// a region on the virtual machines measured here, and a step of the 2D
 /// paper mesh, which the thread chooser runs on one thread, enters some 75
-/// of them (docs/performance.md, "One-thread loops outside OpenMP's
-/// regions"). Called inside a parallel region (a caller's own threads each
+/// of them (`strace -c -f spring-motion deform ...` counts the futex calls).
+/// Called inside a parallel region (a caller's own threads each
 /// moving a mesh), a team of one is a region again: there an orphaned loop
 /// would share its iterations among the caller's threads.
 template <class F>

@@ -14,12 +14,14 @@
 #include <spring_motion/spring_motion.h>
 #include <spring_motion/internal/solver/aggregation_multigrid.h>
 #include <spring_motion/internal/solver/aggregation_refresh.h>
+#include <spring_motion/internal/solver/chebyshev.h>
 #include <spring_motion/internal/solver/dense_cholesky.h>
 #include <spring_motion/internal/solver/rigid_body_multigrid.h>
 
 #include "test_meshes.h"
 #include "test_operators.h"
 
+#include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <catch2/catch.hpp>
 
@@ -141,10 +143,10 @@ struct Setup
   Laplacian A;
 };
 
-Setup setup(bool block)
+Setup setup(bool block, double size = 0.1)
 {
   CDT cdt;
-  make_square_with_hole(cdt, 0.5, 10, 0.1); // about 3900 vertices, graded towards the hole
+  make_square_with_hole(cdt, 0.5, 10, size); // size 0.1: about 3900 vertices, graded towards the hole
   Setup s;
   s.net = extract_spring_network(cdt).network;
   const auto roles = assign_roles(s.net, [&](const Vertex_info<2>& v) {
@@ -615,6 +617,23 @@ TEST_CASE("rigid-body multigrid: in 3D every level is the Galerkin product of th
     CHECK(two.values(l) == mg.values(l)); // bits
     CHECK(two.diagonal(l) == mg.diagonal(l));
   }
+  // three Chebyshev-weighted cycles on level 0 (the 3D default), their
+  // interval estimated at the first: the same interval and correction
+  std::vector<std::array<double, 3>> r(A.rows());
+  for(std::size_t i = 0; i < r.size(); ++i)
+    r[i] = {std::sin(0.7 * double(i)), std::cos(1.3 * double(i)), 0.5 - double(i % 7) / 7};
+  mg.first_level_cycles = two.first_level_cycles = 3;
+  mg.restrict_from(r, 1);
+  mg.cycle(1);
+  two.restrict_from(r, 2);
+  two.cycle(2);
+  REQUIRE(mg.first_level_interval().valid());
+  CHECK(two.first_level_interval().low == mg.first_level_interval().low); // bits
+  CHECK(two.first_level_interval().high == mg.first_level_interval().high);
+  std::size_t differ = 0;
+  for(std::size_t i = 0; i < r.size(); ++i)
+    differ += two.correction(i) != mg.correction(i);
+  CHECK(differ == 0);
 }
 
 TEST_CASE("rigid-body multigrid: with the coarsest level solved exactly, the coarse correction reproduces every "
@@ -663,6 +682,8 @@ TEST_CASE("rigid-body multigrid: the coarse correction is symmetric and positive
   mg.load(s.A.view(), points.data());
   REQUIRE(mg.number_of_levels() >= 2);
   check_symmetric_positive([&](const Vec& u) { return rigid_correction(mg, u); }, s.A.rows(), 11);
+  // with more than one cycle, the Chebyshev-weighted ones (not the plain sum)
+  CHECK(mg.first_level_interval().valid() == (mg.first_level_cycles > 1));
 }
 
 TEST_CASE("rigid-body multigrid: repeated cycles on the first coarse level converge to its exact solution",
@@ -790,6 +811,145 @@ double unscaled_against_scaled(const Laplacian& A, const std::vector<std::array<
 // Scaling a system by a power of two scales every double-precision step of
 // the cycle exactly, so the scaled system's correction, scaled back, is the
 // bits of the unscaled system's cycle in double precision.
+TEST_CASE("Chebyshev weights: k steps leave the Chebyshev polynomial's error on every eigenvalue",
+          "[solver][multigrid]")
+{
+  // One eigenvector of B A with eigenvalue t: B A = t, the solution 1/t.
+  // After k steps from zero the error t (1/t - x_k) = 1 - t x_k is
+  // T_k((b + a - 2t) / (b - a)) / T_k((b + a) / (b - a)), T_k(cos u) =
+  // cos(k u) and T_k(cosh u) = cosh(k u) (and (-1)^k of it for -cosh u).
+  auto T = [](int k, double x) {
+    if(std::abs(x) <= 1)
+      return std::cos(k * std::acos(x));
+    const double c = std::cosh(k * std::acosh(std::abs(x)));
+    return x < 0 && k % 2 ? -c : c;
+  };
+  const internal::Eigen_interval interval{0.2, 1.1};
+  for(const double t : {0.05, 0.2, 0.5, 0.9, 1.1, 1.25, 2.0}) {
+    internal::Chebyshev_steps weights(interval);
+    double x = 0, d = 0;
+    for(int k = 1; k <= 7; ++k) {
+      const auto w = weights.next();
+      d = w.first * d + w.second * (1 - t * x); // B r = residual for B = 1, A = t
+      x += d;
+      const double expected = T(k, (1.1 + 0.2 - 2 * t) / 0.9) / T(k, 1.3 / 0.9);
+      INFO("t = " << t << ", step " << k);
+      CHECK(std::abs((1 - t * x) - expected) <= 1e-12);
+      if(t >= 0.2 && t <= 1.1) // inside the interval: the minimax bound
+        CHECK(std::abs(1 - t * x) <= 1 / T(k, 1.3 / 0.9) * (1 + 1e-12));
+    }
+  }
+}
+
+TEST_CASE("Lanczos extremes: conjugate gradients' coefficients give Ritz values inside the spectrum, exact after "
+          "n steps",
+          "[solver][multigrid]")
+{
+  // Conjugate gradients with B = I on a diagonal matrix of known eigenvalues.
+  const std::vector<double> eigenvalues{0.03, 0.1, 0.35, 0.4, 0.8, 1.7, 2.5, 4.0};
+  const std::size_t n = eigenvalues.size();
+  auto run = [&](std::size_t steps) {
+    std::vector<double> r(n), p, alpha, beta;
+    for(std::size_t i = 0; i < n; ++i)
+      r[i] = 1.0 + 0.1 * double(i);
+    p = r;
+    double rr = 0;
+    for(const double v : r)
+      rr += v * v;
+    for(std::size_t j = 0; j < steps; ++j) {
+      double pq = 0;
+      for(std::size_t i = 0; i < n; ++i)
+        pq += p[i] * eigenvalues[i] * p[i];
+      const double a = rr / pq;
+      double next = 0;
+      for(std::size_t i = 0; i < n; ++i) {
+        r[i] -= a * eigenvalues[i] * p[i];
+        next += r[i] * r[i];
+      }
+      alpha.push_back(a);
+      beta.push_back(next / rr);
+      for(std::size_t i = 0; i < n; ++i)
+        p[i] = r[i] + beta.back() * p[i];
+      rr = next;
+    }
+    return internal::lanczos_extremes(alpha, beta);
+  };
+  for(std::size_t steps = 2; steps < n; ++steps) {
+    const internal::Eigen_interval i = run(steps);
+    INFO(steps << " steps: [" << i.low << ", " << i.high << "]");
+    CHECK(i.low >= 0.03 * (1 - 1e-12));
+    CHECK(i.high <= 4.0 * (1 + 1e-12));
+    CHECK(i.low < i.high);
+  }
+  const internal::Eigen_interval all = run(n);
+  CHECK(all.low == Approx(0.03).epsilon(1e-8));
+  CHECK(all.high == Approx(4.0).epsilon(1e-8));
+  // the bisection against a dense solve of the same tridiagonal matrix
+  const std::vector<double> alpha{0.9, 0.5, 1.3, 0.7}, beta{0.4, 0.8, 0.2, 0.6};
+  Eigen::Matrix4d t = Eigen::Matrix4d::Zero();
+  for(int j = 0; j < 4; ++j) {
+    t(j, j) = 1 / alpha[j] + (j > 0 ? beta[j - 1] / alpha[j - 1] : 0.0);
+    if(j + 1 < 4)
+      t(j, j + 1) = t(j + 1, j) = std::sqrt(beta[j]) / alpha[j];
+  }
+  const Eigen::Vector4d dense = Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d>(t).eigenvalues();
+  const internal::Eigen_interval i = internal::lanczos_extremes(alpha, beta);
+  CHECK(i.low == Approx(dense[0]).epsilon(1e-12));
+  CHECK(i.high == Approx(dense[3]).epsilon(1e-12));
+}
+
+TEST_CASE("rigid-body multigrid: the first coarse level's interval holds the spectrum of one cycle times its matrix",
+          "[solver][multigrid]")
+{
+  // The nonzero eigenvalues of C A, C = P B P^T the fine-level correction of
+  // one cycle, are those of B A_0 (A_0 = P^T A P). Dense: C A is similar to
+  // L^T C L, A = L L^T. On a coarse mesh, whose dense matrices are small;
+  // a low coarsest size keeps a level under level 0, which is then cycled.
+  const Setup s = setup(true, 0.3);
+  const auto points = free_points(s.net);
+  Rigid mg;
+  mg.parameters.coarsest_rows = 4;
+  mg.first_level_cycles = 3;
+  mg.build(s.A.view(), points.data());
+  mg.load(s.A.view(), points.data());
+  REQUIRE(mg.number_of_levels() >= 2);
+  const std::size_t rows = s.A.rows(), N = 2 * rows;
+  Vec u(rows);
+  for(std::size_t i = 0; i < rows; ++i)
+    u[i] = {1.0, -0.5};
+  rigid_correction(mg, u); // the first cycle after build estimates the interval
+  const internal::Eigen_interval interval = mg.first_level_interval();
+  REQUIRE(interval.valid());
+  mg.first_level_cycles = 1;
+  Eigen::MatrixXd C(N, N), A(N, N);
+  for(std::size_t j = 0; j < N; ++j) {
+    Vec e(rows, {0.0, 0.0});
+    e[j / 2][j % 2] = 1;
+    const Vec c = rigid_correction(mg, e), a = multiply(s.A.view(), e);
+    for(std::size_t i = 0; i < N; ++i) {
+      C(Eigen::Index(i), Eigen::Index(j)) = c[i / 2][i % 2];
+      A(Eigen::Index(i), Eigen::Index(j)) = a[i / 2][i % 2];
+    }
+  }
+  const Eigen::MatrixXd L = Eigen::LLT<Eigen::MatrixXd>(A).matrixL();
+  const Eigen::MatrixXd S = L.transpose() * C * L;
+  const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (S + S.transpose())).eigenvalues();
+  const double top = lambda.maxCoeff();
+  double bottom = top;
+  std::size_t nonzero = 0;
+  for(Eigen::Index k = 0; k < lambda.size(); ++k)
+    if(lambda[k] > 1e-9 * top) {
+      bottom = std::min(bottom, lambda[k]);
+      ++nonzero;
+    }
+  INFO(rows << " rows, " << mg.rows(0) << " aggregates; spectrum of B A_0: [" << bottom << ", " << top << "], "
+             << nonzero << " eigenvalues; interval [" << interval.low << ", " << interval.high << "]");
+  CHECK(nonzero == mg.rows(0) * 3);               // P has full rank: every unknown of level 0
+  CHECK(interval.low >= bottom * (1 - 1e-9));     // Ritz values lie inside the spectrum
+  CHECK(interval.high / 1.05 <= top * (1 + 1e-9)); // (the upper end raised by the margin)
+  CHECK(interval.high >= top);                    // the margin covers the largest
+}
+
 TEST_CASE("rigid-body multigrid: in 3D the Gauss-Seidel sweeps of the coarse levels read single precision where "
           "every value fits (double precision where one does not), in 2D double precision",
           "[solver][multigrid]")

@@ -126,9 +126,12 @@ struct Solver_options
   std::size_t multigrid_coarse_interval = 4;
   /// Block systems (element models): V-cycles per preconditioner application
   /// on the multigrid's first coarse level, each on the residual the ones
-  /// before left (a symmetric polynomial in one cycle, so conjugate gradients
-  /// still see a symmetric preconditioner). The first coarse level carries
-  /// the aggregates' rigid motions, and one cycle leaves most of its error
+  /// before left, weighted as in Chebyshev iteration on an interval of the
+  /// level's spectrum estimated when the aggregates are chosen (a symmetric
+  /// polynomial in one cycle, positive for an odd count, so conjugate
+  /// gradients still see a symmetric positive definite preconditioner;
+  /// docs/method.md, "Solver"). The first coarse level carries the
+  /// aggregates' rigid motions, and one cycle leaves most of its error
   /// there; more cycles save iterations, each of which then costs more
   /// (docs/performance.md, "The first coarse level solved more closely").
   /// 0: by dimension, 3 in 3D and 1 in 2D, where three cycles cost the 2D

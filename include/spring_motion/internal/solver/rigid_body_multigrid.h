@@ -6,12 +6,15 @@
 #include <spring_motion/Spring_network.h>
 #include <spring_motion/internal/solver/aggregation_multigrid.h>
 #include <spring_motion/internal/solver/block_ops.h>
+#include <spring_motion/internal/solver/chebyshev.h>
 #include <spring_motion/internal/solver/threads.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -93,6 +96,8 @@ public:
     SPRING_MOTION_CHECK(fine.block, "rigid-body multigrid: the fine system must have D x D blocks");
     levels_.clear();
     built_ = true;
+    interval_ = {};
+    interval_due_ = true;
     std::size_t n = fine.rows;
     while(n > parameters.coarsest_rows) {
       Aggregates g;
@@ -163,7 +168,8 @@ public:
   }
 
   /// Solves approximately on level 0: `first_level_cycles` V-cycles over
-  /// the coarse levels, each on the residual the ones before left.
+  /// the coarse levels, each on the residual the ones before left, their
+  /// corrections weighted as in Chebyshev iteration (see first_level_interval).
   void cycle(int threads = 1)
   {
     Level& L = levels_.front();
@@ -171,12 +177,25 @@ public:
       cycle(0, threads);
       return;
     }
-    // z = sum over k of (I - B A)^k B r, B one V-cycle: a polynomial in B A
-    // whose product with a symmetric B is symmetric, so the whole stays a
+    if(interval_due_) {
+      rhs0_ = L.rhs;
+      interval_ = estimate_first_level_interval(threads);
+      interval_due_ = false;
+      L.rhs.swap(rhs0_);
+    }
+    // z = p(B A) B r, B one V-cycle and p a polynomial of degree
+    // first_level_cycles - 1: symmetric with B, so the whole stays a
     // symmetric preconditioner for conjugate gradients. A is level 0's
-    // matrix as its sweeps read it.
+    // matrix as its sweeps read it. Without an interval p is the sum of
+    // (I - B A)^k (each cycle's correction added as it is).
     rhs0_ = L.rhs;
     sum_.assign(L.n, Coarse_row{});
+    const bool chebyshev = interval_.valid();
+    if(chebyshev)
+      step_.assign(L.n, Coarse_row{});
+    std::optional<Chebyshev_steps> weights;
+    if(chebyshev)
+      weights.emplace(interval_);
     const long n = long(L.n);
     const int nt = team(0, threads);
     for(std::size_t k = 0; k < first_level_cycles; ++k) {
@@ -184,16 +203,34 @@ public:
         cycle(0, threads);
       else
         with_sweep_values(L, [&](const auto* v) { cycle_on_residual(threads, v); });
-      in_team(nt, [&] {
+      if(chebyshev) {
+        const auto w = weights->next();
+        in_team(nt, [&] {
 #pragma omp for schedule(static)
-        for(long i = 0; i < n; ++i)
-          for(int c = 0; c < R; ++c)
-            sum_[std::size_t(i)][c] += L.z[std::size_t(i)][c];
-      });
+          for(long i = 0; i < n; ++i)
+            for(int c = 0; c < R; ++c) {
+              double& d = step_[std::size_t(i)][c];
+              d = w.first * d + w.second * L.z[std::size_t(i)][c];
+              sum_[std::size_t(i)][c] += d;
+            }
+        });
+      } else {
+        in_team(nt, [&] {
+#pragma omp for schedule(static)
+          for(long i = 0; i < n; ++i)
+            for(int c = 0; c < R; ++c)
+              sum_[std::size_t(i)][c] += L.z[std::size_t(i)][c];
+        });
+      }
     }
     L.z.swap(sum_);
     L.rhs.swap(rhs0_);
   }
+
+  /// The interval of B A's eigenvalues on level 0 that its cycles are
+  /// weighted for (empty before the first cycle after `build`, and when
+  /// first_level_cycles <= 1).
+  const Eigen_interval& first_level_interval() const { return interval_; }
 
   /// (P z)_i: the displacement of fine row i by level 0's solution z.
   Row correction(std::size_t i) const
@@ -868,8 +905,81 @@ private:
     backward_gauss_seidel(L, v);
   }
 
+  // The interval for level 0's cycles: the extreme Ritz values of
+  // `lanczos_steps` steps of conjugate gradients on level 0 preconditioned
+  // by one cycle, from a fixed start, the upper end raised by
+  // `interval_margin` (Lanczos approaches the largest eigenvalue from below,
+  // and an eigenvalue above the interval is reduced less; the smallest Ritz
+  // value lies above the smallest eigenvalue, whose error then still
+  // shrinks, more slowly). Made once per `build` (the aggregates), at the
+  // first cycle after it: the values change a little from step to step.
+  // Serial sums, so the same interval for any thread count
+  // (docs/performance.md, "Chebyshev weights for the first coarse level's
+  // cycles").
+  static constexpr int lanczos_steps = 10;
+  static constexpr double interval_margin = 1.05;
+  Eigen_interval estimate_first_level_interval(int threads)
+  {
+    Level& L = levels_.front();
+    const std::size_t n = L.n;
+    std::vector<Coarse_row> r(n), p, q(n);
+    std::uint64_t state = 0x9e3779b97f4a7c15ULL; // a fixed start: the same interval every run
+    for(Coarse_row& row : r)
+      for(double& v : row) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        v = double(state >> 11) * 0x1.0p-53 - 0.5;
+      }
+    auto dot = [n](const std::vector<Coarse_row>& x, const std::vector<Coarse_row>& y) {
+      double t = 0;
+      for(std::size_t i = 0; i < n; ++i)
+        for(int c = 0; c < R; ++c)
+          t += x[i][c] * y[i][c];
+      return t;
+    };
+    auto precondition = [&](const std::vector<Coarse_row>& x) {
+      L.rhs = x;
+      cycle(0, threads);
+      return L.z;
+    };
+    std::vector<Coarse_row> z = precondition(r);
+    p = z;
+    double rz = dot(r, z);
+    std::vector<double> alpha, beta;
+    for(int j = 0; j < lanczos_steps && rz > 0; ++j) {
+      for(std::size_t i = 0; i < n; ++i) {
+        Coarse_row s = block_product<R>(&L.diag[i * RR], p[i]);
+        for(Index e = L.offsets[i]; e < L.offsets[i + 1]; ++e) {
+          const Coarse_row t = block_product<R>(&L.values[std::size_t(e) * RR], p[L.col[e]]);
+          for(int c = 0; c < R; ++c)
+            s[c] += t[c];
+        }
+        q[i] = s;
+      }
+      const double pq = dot(p, q);
+      if(!(pq > 0))
+        break;
+      const double a = rz / pq;
+      for(std::size_t i = 0; i < n; ++i)
+        for(int c = 0; c < R; ++c)
+          r[i][c] -= a * q[i][c];
+      z = precondition(r);
+      const double rz_next = dot(r, z);
+      alpha.push_back(a);
+      beta.push_back(rz_next / rz);
+      rz = rz_next;
+      for(std::size_t i = 0; i < n; ++i)
+        for(int c = 0; c < R; ++c)
+          p[i][c] = z[i][c] + beta.back() * p[i][c];
+    }
+    Eigen_interval i = lanczos_extremes(alpha, beta);
+    i.high *= interval_margin;
+    return i.valid() ? i : Eigen_interval{};
+  }
+
   std::vector<Level> levels_;
-  std::vector<Coarse_row> rhs0_, sum_; // level 0's right-hand side and sum of cycles (see `cycle`)
+  std::vector<Coarse_row> rhs0_, sum_, step_; // level 0's right-hand side, sum of cycles, last step (see `cycle`)
+  Eigen_interval interval_;
+  bool interval_due_ = false;
   std::vector<double> chol_;
   Dense_envelope envelope_;
   bool built_ = false;

@@ -172,11 +172,13 @@ int main(int argc, char** argv)
               "its form where the processor runs AVX too, '-' where it does not)\n"
               "%-26s %12s %14s %12s %14s %12s %14s\n",
               repetitions, "model", "ns/triangle", "ns/tetrahedron", "in twos", "in twos", "in fours", "in fours");
-  sm::Ball_vertex_stiffness p1, p2, p3;
+  sm::Ball_vertex_stiffness p1, p2, p25, p3;
   p2.exponent = 2;
+  p25.exponent = 2.5;
   p3.exponent = 3;
   row("ball_vertex", p1, repetitions);
   row("ball_vertex_p2", p2, repetitions);
+  row("ball_vertex_p2.5", p25, repetitions);
   row("ball_vertex_p3", p3, repetitions);
   row("grid_scaled+ball_vertex", sm::With_ball_vertex<sm::Grid_scaled_stiffness>{}, repetitions);
   row("torsional", sm::Torsional_stiffness{}, repetitions);

@@ -985,7 +985,7 @@ void block_targets(const std::vector<Block_row>& rows, const std::string& mesh, 
                    double bound, std::vector<Target>& ts)
 {
   for(std::size_t k = 1; k < rows.size(); ++k)
-    if(rows[k].model.rfind(model, 0) == 0) {
+    if(rows[k].model.rfind(model + " (", 0) == 0) { // "ball_vertex_p2 (", not "ball_vertex_p2.5 ("
       const double x = step_ratio(rows, k);
       char buf[160], b[32], m[64];
       std::snprintf(buf, sizeof buf, "%.2fx (%.1f / %.1f ms)", x, rows[k].solve_ms + rows[k].stiffness_ms,
@@ -1426,6 +1426,7 @@ void print_targets(const std::vector<Row>& rows, const Cli_results& cli, bool qu
     block_targets(block_2d, "2D paper mesh", "ball_vertex_p2", 1.5, ts);
   if(!block_wing.empty()) {
     block_targets(block_wing, "wing", "ball_vertex_p2", 3, ts);
+    block_targets(block_wing, "wing", "ball_vertex_p2.5", 3, ts);
     block_targets(block_wing, "wing", "ball_vertex_p3", 3, ts);
   }
   cli_targets(cli, ts);
@@ -1563,9 +1564,9 @@ int main(int argc, char** argv)
       // steps, over the first steps only
       wing_block_rows = block_rows_alternated(c, setup.quick ? 3 : c.steps, wing_block_rounds,
                                               {"grid-scaled (scalar)", "ball_vertex_p2 (3x3 blocks)",
-                                               "ball_vertex_p3 (3x3 blocks)"},
+                                               "ball_vertex_p2.5 (3x3 blocks)", "ball_vertex_p3 (3x3 blocks)"},
                                               sm::Grid_scaled_stiffness{}, sm::Ball_vertex_stiffness{2.0},
-                                              sm::Ball_vertex_stiffness{3.0});
+                                              sm::Ball_vertex_stiffness{2.5}, sm::Ball_vertex_stiffness{3.0});
       wing_torsional_rows = block_rows_alternated(c, setup.quick ? 3 : 10, wing_block_rounds,
                                                   {"grid-scaled (scalar)", "torsional (3x3 blocks)"},
                                                   sm::Grid_scaled_stiffness{}, sm::Torsional_stiffness{});

@@ -28,7 +28,8 @@ TITLES = {"original": "original mesh", "lineal": "lineal (p = 1)", "lineal_p2": 
           "blom": "semi-torsional (Blom)", "zeng_ethier": "Zeng-Ethier (face angles)",
           "zeng_ethier_dihedral": "Zeng-Ethier (dihedral)", "grid_scaled": "grid-scaled (the paper's)",
           "torsional": "torsional (Degand-Farhat)", "ball_vertex": "ball-vertex, k = 1/h",
-          "ball_vertex_p2": "ball-vertex, k = 1/h^2", "ball_vertex_p3": "ball-vertex, k = 1/h^3",
+          "ball_vertex_p2": "ball-vertex, k = 1/h^2", "ball_vertex_p2.5": "ball-vertex, k = 1/h^2.5",
+          "ball_vertex_p3": "ball-vertex, k = 1/h^3",
           "grid_scaled+ball_vertex": "grid-scaled + ball-vertex"}
 EDGES = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
 

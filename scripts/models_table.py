@@ -46,8 +46,8 @@ import time
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 MODELS_3D = ["lineal", "lineal_p2", "blom", "zeng_ethier", "grid_scaled", "torsional", "ball_vertex",
-             "ball_vertex_p2", "ball_vertex_p3", "grid_scaled+ball_vertex"]
-MODELS_2D = ["grid_scaled", "torsional", "ball_vertex", "ball_vertex_p2", "ball_vertex_p3",
+             "ball_vertex_p2", "ball_vertex_p2.5", "ball_vertex_p3", "grid_scaled+ball_vertex"]
+MODELS_2D = ["grid_scaled", "torsional", "ball_vertex", "ball_vertex_p2", "ball_vertex_p2.5", "ball_vertex_p3",
              "grid_scaled+ball_vertex"]
 
 MESHES = {
@@ -64,8 +64,8 @@ MESHES = {
     # slivers at the tip outline stop the edge models near 20 degrees
     "mesh3_first": dict(title="Mesh_3 wing, the demo's first default (no ODT, sliver bound 10, no sliver pass)",
                         moving="wing", center="0.5,0,0", up_to=180,
-                        # its table predates ball_vertex_p3
-                        models=[m for m in MODELS_3D if m != "ball_vertex_p3"],
+                        # its table predates ball_vertex_p3 and ball_vertex_p2.5
+                        models=[m for m in MODELS_3D if m not in ("ball_vertex_p3", "ball_vertex_p2.5")],
                         mesh_options=["--odt", "0", "--sliver-bound", "10", "--sliver-smoothing", "0"]),
 }
 AT = 30  # the amplitude of the quality and timing columns
@@ -324,8 +324,9 @@ def main():
             counts = ", ".join(f"{threads.count(t)} on {t} thread{'' if t == '1' else 's'}" for t in sorted(set(threads)))
             before = (f"{len(runs) - len(threads)} runs before the log recorded them (spring-motion's own choice: 2 "
                       "threads unless it measured one faster), then " if len(runs) > len(threads) else "")
-            lines.append(f"Threads: {before}{counts}; the runs on 1 thread were made with `--threads 1`, other runs "
-                         "sharing the 2 cores as the load says.")
+            lines.append(f"Threads: {before}{counts} (as each run's first step took them: `--threads T` where the "
+                         "script was given it, else spring-motion's own choice, one thread on small meshes), runs on "
+                         "2 threads sharing the 2 cores as the load says.")
     if runner.missing:
         lines.append(f"(At least {runner.missing} {'run is' if runner.missing == 1 else 'runs are'} not made yet: the "
                      "rows they decide say 'not run' or 'search not finished'.)")

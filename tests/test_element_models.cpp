@@ -214,7 +214,7 @@ TEST_CASE("ball-vertex: element matrix = sum k(h) grad h grad h^T, grad h by fin
   // central differences with step 1e-6 on O(1) coordinates: truncation and
   // round-off both near 1e-10 of max |K|
   const double tolerance = 1e-7;
-  for(double exponent : {1.0, 1.5, 2.0, 3.0}) {
+  for(double exponent : {1.0, 1.5, 2.0, 2.5, 3.0}) {
     INFO("exponent " << exponent);
     Ball_vertex_stiffness m;
     m.exponent = exponent;
@@ -226,7 +226,7 @@ TEST_CASE("ball-vertex: element matrix = sum k(h) grad h grad h^T, grad h by fin
   // K(s p) = s^-p K(p): with s a power of two the scaling is exact in every
   // product, and at these scales the kernel leaves its quotient-free form for
   // k computed from the height (|V|^p would leave the normal range)
-  for(double exponent : {1.0, 1.5, 2.0, 3.0})
+  for(double exponent : {1.0, 1.5, 2.0, 2.5, 3.0})
     for(int e : {-150, 150}) {
       INFO("exponent " << exponent << ", scale 2^" << e);
       Ball_vertex_stiffness m;
@@ -501,6 +501,7 @@ TEST_CASE("model table: one name per built-in model, each giving that model, bad
                                           "torsional",
                                           "ball_vertex",
                                           "ball_vertex_p2",
+                                          "ball_vertex_p2.5",
                                           "ball_vertex_p3",
                                           "lineal+ball_vertex",
                                           "lineal_p2+ball_vertex",
@@ -515,13 +516,15 @@ TEST_CASE("model table: one name per built-in model, each giving that model, bad
     CHECK(!e.summary.empty());
     CHECK(e.summary.find('\n') == std::string::npos);
     // the reports name the model as the table does; a _pN name reports as
-    // the model without it and exponent N (lineal_p2: lineal, exponent 2)
+    // the model without it and exponent N (lineal_p2: lineal, exponent 2;
+    // ball_vertex_p2.5: ball_vertex, exponent 2.5)
     const auto described = with_model(e.name, [](const auto& model) { return internal::describe_model(model, 2); });
     std::string name = e.name;
     const auto p = name.find("_p");
-    if(p != std::string::npos && p + 3 <= name.size() && (p + 3 == name.size() || name[p + 3] == '+')) {
-      const double exponent = name[p + 2] - '0';
-      name.erase(p, 3);
+    if(p != std::string::npos) {
+      const auto end = std::min(name.find('+', p), name.size());
+      const double exponent = std::stod(name.substr(p + 2, end - p - 2));
+      name.erase(p, end - p);
       const auto& ps = described.parameters;
       CHECK(std::count(ps.begin(), ps.end(), std::make_pair(std::string("exponent"), exponent)) == 1);
     }
@@ -616,7 +619,7 @@ TEST_CASE("ball-vertex: the distinct blocks the assembly reads are the element m
 {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  for(double exponent : {1.0, 2.0, 3.0}) {
+  for(double exponent : {1.0, 2.0, 2.5, 3.0}) {
     Ball_vertex_stiffness m;
     m.exponent = exponent;
     const With_ball_vertex<Grid_scaled_stiffness> combined{{}, m};
@@ -712,7 +715,7 @@ TEST_CASE("ball-vertex: two simplices at once give each one's distinct blocks, b
           "[stiffness][ball_vertex]")
 {
   std::mt19937 rng(11);
-  for(double exponent : {1.0, 2.0, 3.0}) {
+  for(double exponent : {1.0, 2.0, 2.5, 3.0}) {
     const Ball_vertex_stiffness m = ball_vertex_of_power(exponent);
     const With_ball_vertex<Grid_scaled_stiffness> combined{{}, m};
     int taken = 0;
@@ -789,7 +792,7 @@ TEST_CASE("ball-vertex: four simplices at once give each one's distinct blocks, 
     return std::array<Simplex<D>, 4>{random_simplex<D>(rng), random_simplex<D>(rng), random_simplex<D>(rng),
                                      random_simplex<D>(rng)};
   };
-  for(double exponent : {1.0, 2.0, 3.0}) {
+  for(double exponent : {1.0, 2.0, 2.5, 3.0}) {
     const Ball_vertex_stiffness m = ball_vertex_of_power(exponent);
     const With_ball_vertex<Grid_scaled_stiffness> combined{{}, m};
     int taken = 0;

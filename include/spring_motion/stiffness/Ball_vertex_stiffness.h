@@ -135,7 +135,7 @@ struct Ball_vertex_stiffness
   /// arithmetic in the two lanes of one register. Returns false, leaving S
   /// and T as they were, when either needs what only the one-simplex form
   /// does (an edge or a facet too small, a stiffness outside the range
-  /// where it is not capped, an exponent other than 1, 2 or 3): call
+  /// where it is not capped, an exponent other than 1, 2, 5/2 or 3): call
   /// add_symmetric_blocks for each, which also reports what is wrong.
   bool symmetric_blocks_of_two(const std::array<std::array<double, 2>, 3>& p,
                                const std::array<std::array<double, 2>, 3>& q, double* S, double* T) const
@@ -282,9 +282,15 @@ private:
   template <int D>
   static constexpr double max_squared_edge = D == 3 ? 1e100 : std::numeric_limits<double>::infinity();
 
-  // p of k = weight / h^p when it is 1, 2 or 3 (the products blocks() forms
-  // without a power function), else 0
-  int whole_power() const { return exponent == 1 ? 1 : exponent == 2 ? 2 : exponent == 3 ? 3 : 0; }
+  // 2p for the powers p of k = weight / h^p that blocks() forms from the
+  // facet normals without a power function (1, 2, 5/2 and 3), else 0
+  int doubled_power() const
+  {
+    return exponent == 1 ? 2 : exponent == 2 ? 4 : exponent == 2.5 ? 5 : exponent == 3 ? 6 : 0;
+  }
+  // The power the range tests below take: p rounded up (|V|^3 normal
+  // implies |V|^(5/2) normal, and so for the heights)
+  static int bound_power(int doubled) { return (doubled + 1) / 2; }
 
   // Whether |V|^p is a normal number (vexp: log2 |V|), and whether h_i^-p,
   // h_i = |V| / |N_i|, lies far enough inside the range where capped_pow
@@ -371,11 +377,13 @@ private:
     const auto G = gram<D>(N);
     const double volume = std::abs(facets.measure);
     const int vexp = internal::binary_exponent(volume);
-    const int power = whole_power();
-    // 1 / |V|^p, when |V|^p is a normal number
+    const int doubled = doubled_power(), power = bound_power(doubled);
+    // 1 / |V|^p (p = 5/2: 1 / |V|^2, the rest per facet), when |V|^p is a
+    // normal number
     const double inverse_power = volume_uncapped(power, volume, vexp)
-                                     ? 1.0 / (power == 1 ? volume : power == 2 ? volume * volume
-                                                                               : volume * volume * volume)
+                                     ? 1.0 / (power == 1                   ? volume
+                                              : power == 2 || doubled == 5 ? volume * volume
+                                                                           : volume * volume * volume)
                                      : 0.0;
     std::array<std::array<double, S>, D + 1> knn; // k_i n_i n_i^T, upper triangle by rows
     std::array<double, D + 1> inverse_NN;
@@ -392,9 +400,10 @@ private:
       double g; // k_i / |N_i|^2, or k_i with n the unit normal
       if(inverse_power > 0 && height_uncapped(power, vexp, NN)) {
         g = weight * inverse_power;
-        if(power != 2) {
+        if(doubled != 4) {
           const double len = std::sqrt(NN);
-          g = power == 1 ? g / len : g * len;
+          // p = 5/2: |N|^(1/2) / |V|^(5/2) = sqrt(|N| / |V|) / |V|^2
+          g = doubled == 2 ? g / len : doubled == 6 ? g * len : g * std::sqrt(len / volume);
         }
       } else {
         const double len = std::sqrt(NN);
@@ -440,8 +449,8 @@ private:
       const std::array<const std::array<std::array<double, D>, D + 1>*, L>& q, const std::array<double*, L>& out) const
   {
     constexpr int S = D * (D + 1) / 2;
-    const int power = whole_power();
-    if(power == 0)
+    const int doubled = doubled_power(), power = bound_power(doubled);
+    if(doubled == 0)
       return false;
     std::array<std::array<T, D>, D + 1> p;
     for(std::size_t v = 0; v <= D; ++v)
@@ -469,7 +478,7 @@ private:
     }
     const T one = internal::lanes_of<T>(1.0);
     const T inverse_power =
-        one / (power == 1 ? volume : power == 2 ? volume * volume : volume * volume * volume);
+        one / (power == 1 ? volume : power == 2 || doubled == 5 ? volume * volume : volume * volume * volume);
     for(std::size_t t = 0; t < L; ++t)
       if(!(inverse_power[t] > 0))
         return false;
@@ -481,11 +490,10 @@ private:
       const T NN = G[i][i];
       inverse_NN[i] = one / NN;
       T g = internal::lanes_of<T>(weight) * inverse_power;
-      if(power != 2) {
-        T len;
-        for(std::size_t t = 0; t < L; ++t)
-          len[t] = std::sqrt(NN[t]);
-        g = power == 1 ? g / len : g * len;
+      if(doubled != 4) {
+        // NN > 0 and finite (tested above), so is the quotient below
+        const T len = internal::lane_sqrt(NN);
+        g = doubled == 2 ? g / len : doubled == 6 ? g * len : g * internal::lane_sqrt(len / volume);
       }
       for(std::size_t r = 0, m = 0; r < D; ++r)
         for(std::size_t c = r; c < D; ++c, ++m)

@@ -50,6 +50,7 @@ inline const std::vector<Model_entry>& model_table()
         {"torsional", "lineal springs plus torsion springs 1/sin^2 theta at element angles (Farhat; Degand and Farhat in 3D)"},
         {"ball_vertex", "ball-vertex springs only: each vertex tied to its facing facet along the altitude, k = 1/h (Bottasso)"},
         {"ball_vertex_p2", "ball-vertex springs with k = 1/h^2: short altitudes, flattening elements, stiffen faster"},
+        {"ball_vertex_p2.5", "ball-vertex springs with k = 1/h^2.5, between the second and the third power"},
         {"ball_vertex_p3", "ball-vertex springs with k = 1/h^3: the elements next to the body stay closer to rigid"}};
     const std::size_t edge_models = 5;
     for(std::size_t m = 0; m < edge_models; ++m)
@@ -162,6 +163,10 @@ decltype(auto) with_model(const std::string& name, F&& f)
   }
   if(name == "ball_vertex_p2") {
     const Ball_vertex_stiffness model{2.0};
+    return f(model);
+  }
+  if(name == "ball_vertex_p2.5") {
+    const Ball_vertex_stiffness model{2.5};
     return f(model);
   }
   if(name == "ball_vertex_p3") {

@@ -6,6 +6,9 @@
 #include <cmath>
 #include <cstddef>
 #include <type_traits>
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 // Two elements' arithmetic in the two lanes of one SSE2 register, through
 // GCC's vector extension (which Clang also reads). The library builds for
@@ -57,6 +60,18 @@ inline Double_pair lane_abs(Double_pair v)
   // std::abs's result: the sign bit cleared
   return Double_pair(Double_pair_mask(v) & ~Double_pair_mask(Double_pair{-0.0, -0.0}));
 }
+
+/// std::sqrt of each lane (of a positive finite value: no errno to set),
+/// one instruction for all lanes where there is one; IEEE square roots are
+/// correctly rounded, so the same bits as the scalar code's.
+inline Double_pair lane_sqrt(Double_pair v)
+{
+#if defined(__x86_64__)
+  return Double_pair(_mm_sqrt_pd(__m128d(v)));
+#else
+  return Double_pair{std::sqrt(v[0]), std::sqrt(v[1])};
+#endif
+}
 #endif
 
 #if SPRING_MOTION_HAS_DOUBLE_QUAD
@@ -66,6 +81,11 @@ typedef long long Double_quad_mask __attribute__((vector_size(32)));
 __attribute__((target("avx"))) inline Double_quad lane_abs(Double_quad v)
 {
   return Double_quad(Double_quad_mask(v) & ~Double_quad_mask(Double_quad{-0.0, -0.0, -0.0, -0.0}));
+}
+
+__attribute__((target("avx"))) inline Double_quad lane_sqrt(Double_quad v)
+{
+  return Double_quad(_mm256_sqrt_pd(__m256d(v)));
 }
 
 /// Whether this processor (and its operating system) runs AVX code: the
@@ -80,6 +100,7 @@ inline bool four_lanes_available() { return false; }
 #endif
 
 SPRING_MOTION_LANES_INLINE double lane_abs(double v) { return std::abs(v); }
+SPRING_MOTION_LANES_INLINE double lane_sqrt(double v) { return std::sqrt(v); }
 
 /// v in every lane of T.
 template <class T>

@@ -305,6 +305,25 @@ private:
     return power * (std::abs(vexp - internal::binary_exponent(NN) / 2) + 3) < 790;
   }
 
+  // k_i / |N_i|^2 = weight |N_i|^(p-2) / |V|^p in its two pieces, on lanes T
+  // (one function for blocks() and its lanes, so that both run the same
+  // operations): 1 / |V|^p, formed once per element (p = 5/2: 1 / |V|^2),
+  // and the factor of facet i, |N_i|^(p-2) (p = 5/2: sqrt(|N_i| / |V|), the
+  // |V|^(-1/2) left over taken with it). Results as arguments, as in dot().
+  template <class T>
+  SPRING_MOTION_LANES_STATIC void inverse_volume_power(int doubled, const T& volume, const T& one, T& result)
+  {
+    result = one / (doubled == 2 ? volume : doubled <= 5 ? volume * volume : volume * volume * volume);
+  }
+  template <class T>
+  SPRING_MOTION_LANES_STATIC void times_facet_factor(int doubled, const T& NN, const T& volume, T& g)
+  {
+    if(doubled == 4)
+      return;
+    const T len = internal::lane_sqrt(NN);
+    g = doubled == 2 ? g / len : doubled == 6 ? g * len : g * internal::lane_sqrt(len / volume);
+  }
+
   // The blocks v <= w (in the order of add_symmetric_blocks, each as its
   // upper triangle) of sum_i k_i c_iv c_iw n_i n_i^T, from knn[i] = k_i n_i
   // n_i^T (upper triangle) and c[i][v], on lanes T (double, or two or four
@@ -378,13 +397,9 @@ private:
     const double volume = std::abs(facets.measure);
     const int vexp = internal::binary_exponent(volume);
     const int doubled = doubled_power(), power = bound_power(doubled);
-    // 1 / |V|^p (p = 5/2: 1 / |V|^2, the rest per facet), when |V|^p is a
-    // normal number
-    const double inverse_power = volume_uncapped(power, volume, vexp)
-                                     ? 1.0 / (power == 1                   ? volume
-                                              : power == 2 || doubled == 5 ? volume * volume
-                                                                           : volume * volume * volume)
-                                     : 0.0;
+    double inverse_power = 0.0; // unless |V|^p is a normal number
+    if(volume_uncapped(power, volume, vexp))
+      inverse_volume_power(doubled, volume, 1.0, inverse_power);
     std::array<std::array<double, S>, D + 1> knn; // k_i n_i n_i^T, upper triangle by rows
     std::array<double, D + 1> inverse_NN;
     // The loops over the altitudes and blocks unrolled: left to itself the
@@ -400,11 +415,7 @@ private:
       double g; // k_i / |N_i|^2, or k_i with n the unit normal
       if(inverse_power > 0 && height_uncapped(power, vexp, NN)) {
         g = weight * inverse_power;
-        if(doubled != 4) {
-          const double len = std::sqrt(NN);
-          // p = 5/2: |N|^(1/2) / |V|^(5/2) = sqrt(|N| / |V|) / |V|^2
-          g = doubled == 2 ? g / len : doubled == 6 ? g * len : g * std::sqrt(len / volume);
-        }
+        times_facet_factor(doubled, NN, volume, g);
       } else {
         const double len = std::sqrt(NN);
         for(double& x : n)
@@ -477,8 +488,8 @@ private:
           return false;
     }
     const T one = internal::lanes_of<T>(1.0);
-    const T inverse_power =
-        one / (power == 1 ? volume : power == 2 || doubled == 5 ? volume * volume : volume * volume * volume);
+    T inverse_power;
+    inverse_volume_power(doubled, volume, one, inverse_power);
     for(std::size_t t = 0; t < L; ++t)
       if(!(inverse_power[t] > 0))
         return false;
@@ -490,11 +501,7 @@ private:
       const T NN = G[i][i];
       inverse_NN[i] = one / NN;
       T g = internal::lanes_of<T>(weight) * inverse_power;
-      if(doubled != 4) {
-        // NN > 0 and finite (tested above), so is the quotient below
-        const T len = internal::lane_sqrt(NN);
-        g = doubled == 2 ? g / len : doubled == 6 ? g * len : g * internal::lane_sqrt(len / volume);
-      }
+      times_facet_factor(doubled, NN, volume, g); // NN > 0 and finite (tested above), so is g
       for(std::size_t r = 0, m = 0; r < D; ++r)
         for(std::size_t c = r; c < D; ++c, ++m)
           knn[i][m] = g * n[r] * n[c];

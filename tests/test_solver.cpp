@@ -1255,6 +1255,78 @@ TEST_CASE("solvers: a row's block products by columns, four rows at a time where
   }
 }
 
+// A row of symmetric blocks stored as upper triangles, as the sweeps (floats
+// or doubles) and conjugate gradients' products (doubles) read it: the row's
+// sums must be those of block after block, bit for bit (in 3D, where AVX
+// runs, the three rows are summed at once). Every third row is one block of
+// one sign times x = +0 from a sum of -0, so each of its products is a zero
+// of that sign: a zero sum keeps the sign the scalar sums give (-0 - +0 is
+// -0; a block's product summed from +0 is +0, never -0).
+template <int D, class T>
+void check_symmetric_row_products(std::mt19937_64& random)
+{
+  constexpr int U = D * (D + 1) / 2;
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  std::uniform_int_distribution<unsigned> column(0, 39);
+  const unsigned n = 400, zero_column = 40;
+  std::vector<T> v(std::size_t(n) * U);
+  for(std::size_t k = 0; k < v.size(); ++k)
+    v[k] = k % 11 == 0 ? T(0) : T(std::ldexp(value(random), exponent(random)));
+  std::vector<unsigned> col(n);
+  for(unsigned& c : col)
+    c = column(random);
+  std::vector<std::array<double, D>> x(zero_column + 1);
+  for(auto& r : x)
+    for(double& e : r)
+      e = std::ldexp(value(random), exponent(random));
+  x[zero_column].fill(0.0);
+  std::size_t same = 0, same_sum = 0, rows = 0, negative_zeros = 0;
+  for(unsigned first = 0; first < n; first += 20, ++rows) {
+    const bool zeros = rows % 3 == 0;
+    const unsigned last = first + (zeros ? 1 : 1 + rows % 19);
+    std::array<double, D> expected, s, expected_sum, sum;
+    for(int c = 0; c < D; ++c) {
+      expected[std::size_t(c)] = s[std::size_t(c)] = zeros ? -0.0 : value(random);
+      expected_sum[std::size_t(c)] = sum[std::size_t(c)] = zeros ? -0.0 : value(random);
+    }
+    if(zeros) {
+      col[first] = zero_column;
+      for(int k = 0; k < U; ++k)
+        v[std::size_t(first) * U + std::size_t(k)] = T(rows % 2 ? 0.5 : -0.5);
+    }
+    for(unsigned q = first; q < last; ++q) {
+      internal::subtract_symmetric_block_product<D>(expected, &v[std::size_t(q) * U], x[col[q]]);
+      if constexpr(std::is_same<T, double>::value) {
+        const auto t = internal::symmetric_block_product<D>(&v[std::size_t(q) * U], x[col[q]]);
+        for(int c = 0; c < D; ++c)
+          expected_sum[std::size_t(c)] += t[std::size_t(c)];
+      }
+    }
+    for(double e : expected)
+      negative_zeros += e == 0 && std::signbit(e);
+    internal::subtract_symmetric_row_products<D>(s, v.data(), col.data(), first, last, x.data());
+    same += std::memcmp(s.data(), expected.data(), sizeof s) == 0;
+    if constexpr(std::is_same<T, double>::value) {
+      internal::add_symmetric_row_products<D>(sum, v.data(), col.data(), first, last, x.data());
+      same_sum += std::memcmp(sum.data(), expected_sum.data(), sizeof sum) == 0;
+    }
+  }
+  CHECK(same == rows);
+  CHECK(same_sum == (std::is_same<T, double>::value ? rows : 0));
+  CHECK(negative_zeros > 0);
+}
+
+TEST_CASE("solvers: a row of symmetric blocks read from their upper triangles sums as block after block, bit for bit",
+          "[solver][block]")
+{
+  std::mt19937_64 random(13);
+  check_symmetric_row_products<2, float>(random);
+  check_symmetric_row_products<3, float>(random);
+  check_symmetric_row_products<2, double>(random);
+  check_symmetric_row_products<3, double>(random);
+}
+
 TEST_CASE("solvers: a block of floats stored by columns gives the row-major block's product, bit for bit",
           "[solver][block][multigrid]")
 {

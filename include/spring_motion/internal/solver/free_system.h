@@ -774,17 +774,6 @@ private:
                         "too many stiffness blocks for 32-bit indices");
   }
 
-  // s -= A_q x for off-diagonal entry q read from `off`: a full D x D
-  // block, or (Upper) a symmetric block's upper triangle
-  template <bool Upper, class V>
-  static void subtract_off_block(Row& s, const V* off, Index q, const Row& x)
-  {
-    if constexpr(Upper)
-      subtract_symmetric_block_product<D>(s, off + std::size_t(q) * UD, x);
-    else
-      subtract_block_product<D>(s, off + std::size_t(q) * DD, x);
-  }
-
   // s = rhs - sum over the off-diagonal entries [begin, end) of A_kj x_j
   // (a part of row k), the entries read from `off` (values(), or their
   // single-precision copy, Upper: of the upper triangles). The sweeps and
@@ -795,9 +784,11 @@ private:
   Row off_residual(const std::vector<Row>& x, const Row& rhs, Index begin, Index end, const V* off) const
   {
     Row s = rhs;
-    if constexpr(B) {
+    if constexpr(B && Upper) {
+      subtract_symmetric_row_products<D>(s, off, col_.data(), begin, end, x.data());
+    } else if constexpr(B) {
       for(Index q = begin; q < end; ++q)
-        subtract_off_block<Upper>(s, off, q, x[col_[q]]);
+        subtract_block_product<D>(s, off + std::size_t(q) * DD, x[col_[q]]);
     } else {
       for(Index q = begin; q < end; ++q) {
         const double v = double(off[q]);
@@ -820,8 +811,8 @@ private:
           y[c] += t[c];
       };
       if(product_upper_)
-        for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q)
-          add(symmetric_block_product<D>(&upper_off_[std::size_t(q) * UD], x[col_[q]]));
+        add_symmetric_row_products<D>(y, upper_off_.data(), col_.data(), row_offsets_[k], row_offsets_[k + 1],
+                                      x.data());
       else
         for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q)
           add(block_product<D>(&blocks_[off_block(q) * DD], x[col_[q]]));

@@ -1305,10 +1305,10 @@ void check_symmetric_row_products(std::mt19937_64& random)
     }
     for(double e : expected)
       negative_zeros += e == 0 && std::signbit(e);
-    internal::subtract_symmetric_row_products<D>(s, v.data(), col.data(), first, last, x.data());
+    internal::symmetric_row_products<internal::Row_products::subtract, D>(s, v.data(), col.data(), first, last, x.data());
     same += std::memcmp(s.data(), expected.data(), sizeof s) == 0;
     if constexpr(std::is_same<T, double>::value) {
-      internal::add_symmetric_row_products<D>(sum, v.data(), col.data(), first, last, x.data());
+      internal::symmetric_row_products<internal::Row_products::add, D>(sum, v.data(), col.data(), first, last, x.data());
       same_sum += std::memcmp(sum.data(), expected_sum.data(), sizeof sum) == 0;
     }
   }

@@ -657,7 +657,7 @@ void assemble_block_system(const std::vector<typename Spring_network<D>::Point>&
     // No springs: the blocks are only cleared for the element matrices. The
     // diagonal, off-diagonal and boundary blocks each lie together, so each
     // is cleared as one range: three fills a row (of 4 to 30 values in 2D)
-    // took 2% of a 2D ball-vertex step.
+    // took 0.02 ms of a 1.4 ms 2D ball-vertex step (stiffness 0.31 -> 0.29 ms).
     clear_in_team(blocks, std::size_t(nf) * DD, nt);
     if(upper)
       clear_in_team(upper, fs.nonzeros() * S, nt);

@@ -205,6 +205,16 @@ inline std::array<double, D> symmetric_block_product(const double* U, const std:
   return y;
 }
 
+/// How symmetric_row_products takes a row's block products into its sums:
+/// `subtract` each product's terms one by one (the sweeps' residual, as
+/// subtract_symmetric_block_product), or `add` each product formed alone
+/// from zero (conjugate gradients' product, as symmetric_block_product).
+enum class Row_products
+{
+  subtract,
+  add
+};
+
 #if SPRING_MOTION_HAS_DOUBLE_QUAD
 // The three columns of a symmetric 3 x 3 block from its upper triangle u =
 // (m00, m01, m02, m11, m12, m22), given a = u0..u3 and b = u2..u5 (both
@@ -233,91 +243,62 @@ __attribute__((target("avx"))) inline void store_three_lanes(__m256d t, std::arr
   _mm_store_sd(&s[2], _mm256_extractf128_pd(t, 1));
 }
 
-// subtract_symmetric_row_products for D = 3 with AVX: the row's three sums
-// in one register, each lane subtracting its products in the order of the
-// columns as subtract_symmetric_block_product does (AVX alone brings no
-// fused multiply-add): the same bits. Lane 3 sums products of other entries
-// of the same blocks and is never stored.
-template <class T, class I, class X>
-__attribute__((target("avx"))) inline void subtract_symmetric_row_products_3_avx(std::array<double, 3>& s,
-                                                                                  const T* v, const I* col, I first,
-                                                                                  I last, const X* x)
+// symmetric_row_products for D = 3 with AVX: the row's three sums in one
+// register, each lane taking its products in the order of the columns as
+// the scalar forms do (AVX alone brings no fused multiply-add): the same
+// bits. Lane 3 sums products of other entries of the same blocks and is
+// never stored.
+template <Row_products P, class T, class I, class X>
+__attribute__((target("avx"))) inline void symmetric_row_products_3_avx(std::array<double, 3>& s, const T* v,
+                                                                         const I* col, I first, I last, const X* x)
 {
   __m256d t = _mm256_set_pd(0.0, s[2], s[1], s[0]);
   for(I q = first; q < last; ++q) {
     __m256d m[3];
     symmetric_columns_3(v + std::size_t(q) * 6, m);
     const double* y = x[col[q]].data();
-    for(int c = 0; c < 3; ++c)
-      t = _mm256_sub_pd(t, _mm256_mul_pd(m[c], _mm256_broadcast_sd(y + c)));
-  }
-  store_three_lanes(t, s);
-}
-
-// add_symmetric_row_products for D = 3 with AVX: each block's product
-// summed from zero in the order of the columns, as symmetric_block_product
-// does, then added to the row's sums: the same bits.
-template <class I, class X>
-__attribute__((target("avx"))) inline void add_symmetric_row_products_3_avx(std::array<double, 3>& s,
-                                                                             const double* v, const I* col, I first,
-                                                                             I last, const X* x)
-{
-  __m256d t = _mm256_set_pd(0.0, s[2], s[1], s[0]);
-  for(I q = first; q < last; ++q) {
-    __m256d m[3];
-    symmetric_columns_3(v + std::size_t(q) * 6, m);
-    const double* y = x[col[q]].data();
-    __m256d p = _mm256_setzero_pd();
-    for(int c = 0; c < 3; ++c)
-      p = _mm256_add_pd(p, _mm256_mul_pd(m[c], _mm256_broadcast_sd(y + c)));
-    t = _mm256_add_pd(t, p);
+    if constexpr(P == Row_products::subtract) {
+      for(int c = 0; c < 3; ++c)
+        t = _mm256_sub_pd(t, _mm256_mul_pd(m[c], _mm256_broadcast_sd(y + c)));
+    } else {
+      __m256d p = _mm256_setzero_pd();
+      for(int c = 0; c < 3; ++c)
+        p = _mm256_add_pd(p, _mm256_mul_pd(m[c], _mm256_broadcast_sd(y + c)));
+      t = _mm256_add_pd(t, p);
+    }
   }
   store_three_lanes(t, s);
 }
 #endif
 
-/// s -= the sum over the entries q in [first, last) of M_q x[col[q]], the
-/// symmetric D x D blocks M_q stored as upper triangles (of doubles, or of
-/// floats read as doubles) at v + q D (D + 1) / 2: block after block by
-/// subtract_symmetric_block_product, or, for D = 3 where the processor has
-/// AVX, the three rows at once with the same bits (one at a time, with a
-/// conversion per float, a 3D block sweep was bound by its instructions,
-/// not by the bytes it reads).
-template <int D, class T, class I, class X>
-inline void subtract_symmetric_row_products(std::array<double, D>& s, const T* v, const I* col, I first, I last,
-                                            const X* x)
+/// s -= (P subtract) or s += (P add) the sum over the entries q in [first,
+/// last) of M_q x[col[q]], the symmetric D x D blocks M_q stored as upper
+/// triangles (of doubles, or of floats read as doubles) at v + q D (D + 1) /
+/// 2: block after block by subtract_symmetric_block_product or
+/// symmetric_block_product, or, for D = 3 where the processor has AVX, the
+/// three rows at once with the same bits (one at a time, a 3D block took
+/// about 35 instructions, with a conversion per float; three rows at once
+/// take about 20, and a one-thread ball-vertex solve of the wing 0.90 times
+/// as long).
+template <Row_products P, int D, class T, class I, class X>
+inline void symmetric_row_products(std::array<double, D>& s, const T* v, const I* col, I first, I last, const X* x)
 {
 #if SPRING_MOTION_HAS_DOUBLE_QUAD
   if constexpr(D == 3)
     if(four_lanes_available()) {
-      subtract_symmetric_row_products_3_avx(s, v, col, first, last, x);
+      symmetric_row_products_3_avx<P>(s, v, col, first, last, x);
       return;
     }
 #endif
-  for(I q = first; q < last; ++q)
-    subtract_symmetric_block_product<D>(s, v + std::size_t(q) * (D * (D + 1) / 2), x[col[q]]);
-}
-
-/// s += the sum over the entries q in [first, last) of M_q x[col[q]], each
-/// product formed alone by symmetric_block_product and then added, the
-/// symmetric blocks of doubles stored as upper triangles at v + q D (D + 1)
-/// / 2; for D = 3 where the processor has AVX, three rows at once with the
-/// same bits.
-template <int D, class I, class X>
-inline void add_symmetric_row_products(std::array<double, D>& s, const double* v, const I* col, I first, I last,
-                                       const X* x)
-{
-#if SPRING_MOTION_HAS_DOUBLE_QUAD
-  if constexpr(D == 3)
-    if(four_lanes_available()) {
-      add_symmetric_row_products_3_avx(s, v, col, first, last, x);
-      return;
-    }
-#endif
+  constexpr int U = D * (D + 1) / 2;
   for(I q = first; q < last; ++q) {
-    const std::array<double, D> t = symmetric_block_product<D>(v + std::size_t(q) * (D * (D + 1) / 2), x[col[q]]);
-    for(int c = 0; c < D; ++c)
-      s[std::size_t(c)] += t[std::size_t(c)];
+    if constexpr(P == Row_products::subtract) {
+      subtract_symmetric_block_product<D>(s, v + std::size_t(q) * U, x[col[q]]);
+    } else {
+      const std::array<double, D> t = symmetric_block_product<D>(v + std::size_t(q) * U, x[col[q]]);
+      for(int c = 0; c < D; ++c)
+        s[std::size_t(c)] += t[std::size_t(c)];
+    }
   }
 }
 

@@ -785,7 +785,7 @@ private:
   {
     Row s = rhs;
     if constexpr(B && Upper) {
-      subtract_symmetric_row_products<D>(s, off, col_.data(), begin, end, x.data());
+      symmetric_row_products<Row_products::subtract, D>(s, off, col_.data(), begin, end, x.data());
     } else if constexpr(B) {
       for(Index q = begin; q < end; ++q)
         subtract_block_product<D>(s, off + std::size_t(q) * DD, x[col_[q]]);
@@ -811,8 +811,8 @@ private:
           y[c] += t[c];
       };
       if(product_upper_)
-        add_symmetric_row_products<D>(y, upper_off_.data(), col_.data(), row_offsets_[k], row_offsets_[k + 1],
-                                      x.data());
+        symmetric_row_products<Row_products::add, D>(y, upper_off_.data(), col_.data(), row_offsets_[k],
+                                                     row_offsets_[k + 1], x.data());
       else
         for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q)
           add(block_product<D>(&blocks_[off_block(q) * DD], x[col_[q]]));

@@ -784,8 +784,15 @@ private:
   Row off_residual(const std::vector<Row>& x, const Row& rhs, Index begin, Index end, const V* off) const
   {
     Row s = rhs;
-    if constexpr(B && Upper) {
+    // 2D rows keep a loop of their own: through symmetric_row_products (its
+    // scalar form in 2D, the same bits) GCC 12 compiled the 2D sweep with
+    // other registers and the 2D ball-vertex solve took about 1.03 times as
+    // long (alternated runs); the product below likewise
+    if constexpr(B && Upper && D == 3) {
       symmetric_row_products<Row_products::subtract, D>(s, off, col_.data(), begin, end, x.data());
+    } else if constexpr(B && Upper) {
+      for(Index q = begin; q < end; ++q)
+        subtract_symmetric_block_product<D>(s, off + std::size_t(q) * UD, x[col_[q]]);
     } else if constexpr(B) {
       for(Index q = begin; q < end; ++q)
         subtract_block_product<D>(s, off + std::size_t(q) * DD, x[col_[q]]);
@@ -810,9 +817,12 @@ private:
         for(int c = 0; c < D; ++c)
           y[c] += t[c];
       };
-      if(product_upper_)
+      if(product_upper_ && D == 3)
         symmetric_row_products<Row_products::add, D>(y, upper_off_.data(), col_.data(), row_offsets_[k],
                                                      row_offsets_[k + 1], x.data());
+      else if(product_upper_)
+        for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q)
+          add(symmetric_block_product<D>(&upper_off_[std::size_t(q) * UD], x[col_[q]]));
       else
         for(Index q = row_offsets_[k]; q < row_offsets_[k + 1]; ++q)
           add(block_product<D>(&blocks_[off_block(q) * DD], x[col_[q]]));

@@ -1509,6 +1509,82 @@ void check_upper_load_against_whole_blocks(int n)
 
 } // namespace
 
+namespace {
+// A load without edge springs, into blocks filled with NaN first: every
+// value must equal the load with springs along the edges of stiffness 0
+// (whose edge loop writes every block before the elements add to it), the
+// coupling blocks too (through the right-hand side). A block left out of
+// the clearing keeps its NaN. (Blocks fresh from the allocator often hold
+// zeros already, which would hide it.)
+template <int D, class Model, class With_springs>
+void check_blocks_cleared_by_chunks(const Model& model, const With_springs& with_springs, bool upper, int threads)
+{
+  const auto mesh = spring_motion_test::kuhn_grid<D>(D == 2 ? 40 : 9);
+  const auto net = make_spring_network<D>(mesh.points, mesh.elements);
+  const auto roles = assign_roles(net, [&](const Vertex_info<D>& v) {
+    return v.on_boundary ? Vertex_role::fixed : Vertex_role::free;
+  });
+  std::vector<Index> free;
+  for(Index i = 0; i < Index(net.number_of_vertices()); ++i)
+    if(roles[i] == Vertex_role::free)
+      free.push_back(i);
+  std::vector<std::array<double, D>> start(net.number_of_vertices());
+  for(std::size_t i = 0; i < start.size(); ++i)
+    for(int c = 0; c < D; ++c)
+      start[i][c] = 0.01 * std::cos(2.0 * double(i) + double(c));
+  const std::vector<double> k(net.number_of_edges(), 0.0);
+  Solver_options o;
+  o.threads = threads;
+  auto load = [&](const auto& m, std::vector<double>& values, std::vector<double>& diagonal,
+                  std::vector<std::array<double, D>>& rhs) {
+    internal::Free_system<D> fs;
+    fs.build(net, free, true, o);
+    fs.set_upper_load(upper);
+    const auto poison = std::numeric_limits<double>::quiet_NaN();
+    std::fill_n(fs.block_values(), fs.bnd_block(Index(fs.bnd_vertices().size())) * D * D, poison);
+    if(upper)
+      std::fill_n(fs.upper_values(), fs.nonzeros() * D * (D + 1) / 2, poison);
+    internal::assemble_block_system<D>(net.points, m, k, fs, threads);
+    REQUIRE(fs.upper_load() == upper);
+    fs.set_positions(net.points);
+    fs.set_start(start, threads);
+    values.assign(fs.values(), fs.values() + fs.nonzeros() * D * D);
+    diagonal.assign(fs.diagonal(), fs.diagonal() + fs.rows() * D * D);
+    rhs = fs.rhs();
+  };
+  std::vector<double> values, diagonal, values_springs, diagonal_springs;
+  std::vector<std::array<double, D>> rhs, rhs_springs;
+  REQUIRE(internal::edge_spring_form(model) == Edge_spring_form::none);
+  REQUIRE(internal::edge_spring_form(with_springs) == Edge_spring_form::along_edge);
+  load(model, values, diagonal, rhs);
+  load(with_springs, values_springs, diagonal_springs, rhs_springs);
+  REQUIRE(values.size() > 1000);
+  CHECK(values == values_springs); // a NaN compares unequal
+  CHECK(diagonal == diagonal_springs);
+  CHECK(rhs == rhs_springs);
+}
+} // namespace
+
+TEST_CASE("solvers: a block load without edge springs starts every block from zero, whatever the blocks held",
+          "[solver][block]")
+{
+  // the model itself (its blocks four or two elements at a time, as upper
+  // triangles), and its whole element matrices (whole blocks)
+  const Ball_vertex_stiffness ball{2.0};
+  const auto none = Edge_spring_form::none, along = Edge_spring_form::along_edge;
+  for(const int threads : {1, 2}) {
+    INFO(threads << " thread(s)");
+    check_blocks_cleared_by_chunks<2>(ball, Symmetric_blocks_of<2, Ball_vertex_stiffness>{{ball, along}}, true,
+                                      threads);
+    check_blocks_cleared_by_chunks<3>(ball, Symmetric_blocks_of<3, Ball_vertex_stiffness>{{ball, along}}, true,
+                                      threads);
+    check_blocks_cleared_by_chunks<2>(Whole_blocks_of<2, Ball_vertex_stiffness>{ball, none},
+                                      Whole_blocks_of<2, Ball_vertex_stiffness>{ball, along}, false, threads);
+    check_blocks_cleared_by_chunks<3>(Whole_blocks_of<3, Ball_vertex_stiffness>{ball, none},
+                                      Whole_blocks_of<3, Ball_vertex_stiffness>{ball, along}, false, threads);
+  }
+}
+
 TEST_CASE("solvers: a load of symmetric blocks as upper triangles gives the values and solutions of whole blocks, "
           "bit for bit",
           "[solver][block]")

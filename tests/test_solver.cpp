@@ -29,6 +29,7 @@
 #include <sstream>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 using namespace spring_motion;
@@ -1460,11 +1461,13 @@ Loaded<D> load_and_solve(const Spring_network<D>& net, const std::vector<Index>&
   return out;
 }
 
+// The network of a jittered Kuhn grid of n cells a side and its interior
+// vertices (the free ones; the boundary is fixed), in order.
 template <int D>
-void check_upper_load_against_whole_blocks(int n)
+std::pair<Spring_network<D>, std::vector<Index>> kuhn_network_and_interior(int n)
 {
   const auto mesh = spring_motion_test::kuhn_grid<D>(n);
-  const auto net = make_spring_network<D>(mesh.points, mesh.elements);
+  auto net = make_spring_network<D>(mesh.points, mesh.elements);
   const auto roles = assign_roles(net, [&](const Vertex_info<D>& v) {
     return v.on_boundary ? Vertex_role::fixed : Vertex_role::free;
   });
@@ -1472,6 +1475,15 @@ void check_upper_load_against_whole_blocks(int n)
   for(Index i = 0; i < Index(net.number_of_vertices()); ++i)
     if(roles[i] == Vertex_role::free)
       free.push_back(i);
+  return {std::move(net), std::move(free)};
+}
+
+template <int D>
+void check_upper_load_against_whole_blocks(int n)
+{
+  const auto grid = kuhn_network_and_interior<D>(n);
+  const auto& net = grid.first;
+  const auto& free = grid.second;
   REQUIRE(free.size() > 100);
   const Ball_vertex_stiffness ball{2.0};
   // ball-vertex springs alone, and with edge springs along the edges (the
@@ -1507,9 +1519,7 @@ void check_upper_load_against_whole_blocks(int n)
     }
 }
 
-} // namespace
 
-namespace {
 // A load without edge springs, into blocks filled with NaN first: every
 // value must equal the load with springs along the edges of stiffness 0
 // (whose edge loop writes every block before the elements add to it), the
@@ -1517,17 +1527,11 @@ namespace {
 // the clearing keeps its NaN. (Blocks fresh from the allocator often hold
 // zeros already, which would hide it.)
 template <int D, class Model, class With_springs>
-void check_blocks_cleared_by_chunks(const Model& model, const With_springs& with_springs, bool upper, int threads)
+void check_blocks_start_from_zero(const Model& model, const With_springs& with_springs, bool upper, int threads)
 {
-  const auto mesh = spring_motion_test::kuhn_grid<D>(D == 2 ? 40 : 9);
-  const auto net = make_spring_network<D>(mesh.points, mesh.elements);
-  const auto roles = assign_roles(net, [&](const Vertex_info<D>& v) {
-    return v.on_boundary ? Vertex_role::fixed : Vertex_role::free;
-  });
-  std::vector<Index> free;
-  for(Index i = 0; i < Index(net.number_of_vertices()); ++i)
-    if(roles[i] == Vertex_role::free)
-      free.push_back(i);
+  const auto grid = kuhn_network_and_interior<D>(D == 2 ? 40 : 9);
+  const auto& net = grid.first;
+  const auto& free = grid.second;
   std::vector<std::array<double, D>> start(net.number_of_vertices());
   for(std::size_t i = 0; i < start.size(); ++i)
     for(int c = 0; c < D; ++c)
@@ -1574,13 +1578,13 @@ TEST_CASE("solvers: a block load without edge springs starts every block from ze
   const auto none = Edge_spring_form::none, along = Edge_spring_form::along_edge;
   for(const int threads : {1, 2}) {
     INFO(threads << " thread(s)");
-    check_blocks_cleared_by_chunks<2>(ball, Symmetric_blocks_of<2, Ball_vertex_stiffness>{{ball, along}}, true,
+    check_blocks_start_from_zero<2>(ball, Symmetric_blocks_of<2, Ball_vertex_stiffness>{{ball, along}}, true,
                                       threads);
-    check_blocks_cleared_by_chunks<3>(ball, Symmetric_blocks_of<3, Ball_vertex_stiffness>{{ball, along}}, true,
+    check_blocks_start_from_zero<3>(ball, Symmetric_blocks_of<3, Ball_vertex_stiffness>{{ball, along}}, true,
                                       threads);
-    check_blocks_cleared_by_chunks<2>(Whole_blocks_of<2, Ball_vertex_stiffness>{ball, none},
+    check_blocks_start_from_zero<2>(Whole_blocks_of<2, Ball_vertex_stiffness>{ball, none},
                                       Whole_blocks_of<2, Ball_vertex_stiffness>{ball, along}, false, threads);
-    check_blocks_cleared_by_chunks<3>(Whole_blocks_of<3, Ball_vertex_stiffness>{ball, none},
+    check_blocks_start_from_zero<3>(Whole_blocks_of<3, Ball_vertex_stiffness>{ball, none},
                                       Whole_blocks_of<3, Ball_vertex_stiffness>{ball, along}, false, threads);
   }
 }

@@ -21,6 +21,7 @@ static_assert(std::is_same<decltype(spring_motion::internal::capped_pow(2.0, 3.0
               "Stiffness_model.h must not declare the capped arithmetic");
 
 #include <spring_motion/internal/geometry/capped_math.h>
+#include <spring_motion/internal/geometry/double_pair.h>
 
 #include <catch2/catch.hpp>
 
@@ -167,52 +168,86 @@ TEST_CASE("capped_math: all_finite from the bits agrees with std::isfinite", "[s
   CHECK(all_finite(v.data(), 0));
 }
 
+#if SPRING_MOTION_HAS_DOUBLE_PAIR
+// Lane_finiteness over N values of T (L lanes): each special value in each
+// of the N places of each lane, the other values random and finite. Counts
+// of lanes whose flag agrees with std::isfinite, of lanes that hold a value
+// that is not finite, and of lanes tested. Always inlined, so that the
+// four-lane form runs inside a function compiled for AVX.
+template <class T, std::size_t L, std::size_t N>
+SPRING_MOTION_LANES_INLINE std::array<std::size_t, 3> lane_finiteness_counts(const double* specials,
+                                                                             const bool* finite, std::size_t count)
+{
+  std::mt19937_64 random(13);
+  std::uniform_real_distribution<double> value(-1e3, 1e3);
+  std::array<T, N> v;
+  std::size_t agree = 0, flagged = 0, n = 0;
+  for(std::size_t k = 0; k < count; ++k)
+    for(std::size_t at = 0; at < N; ++at)
+      for(std::size_t lane = 0; lane < L; ++lane) {
+        for(T& x : v)
+          for(std::size_t l = 0; l < L; ++l)
+            x[l] = value(random);
+        v[at][lane] = specials[k];
+        Lane_finiteness<T> f;
+        for(const T& x : v)
+          f.add(x);
+        for(std::size_t l = 0; l < L; ++l) {
+          const bool expected = l != lane || finite[k];
+          agree += f.finite(l) == expected;
+          flagged += !expected;
+          ++n;
+        }
+      }
+  return {agree, flagged, n};
+}
+
+std::array<std::size_t, 3> pair_counts(const double* specials, const bool* finite, std::size_t count)
+{
+  return lane_finiteness_counts<Double_pair, 2, 60>(specials, finite, count);
+}
+
 #if SPRING_MOTION_HAS_DOUBLE_QUAD
-// N values: a tetrahedron's 60 ball-vertex values (four-lane loads only) and
-// a triangle's 18 (two left for the scalar test)
-template <std::size_t N>
-void check_four_lanes_against_isfinite()
+__attribute__((target("avx"))) std::array<std::size_t, 3> quad_counts(const double* specials, const bool* finite,
+                                                                      std::size_t count)
+{
+  return lane_finiteness_counts<Double_quad, 4, 60>(specials, finite, count);
+}
+#endif
+
+TEST_CASE("capped_math: Lane_finiteness flags exactly the lanes with a value that is not finite",
+          "[stiffness][capped]")
 {
   using limits = std::numeric_limits<double>;
   const double specials[] = {limits::quiet_NaN(), -limits::quiet_NaN(), limits::signaling_NaN(),
                              limits::infinity(),  -limits::infinity(),  limits::max(),
                              -limits::max(),      limits::denorm_min(), -limits::denorm_min(),
                              0.0,                 -0.0,                 std::ldexp(1.5, 1023)};
-  std::mt19937_64 random(13);
-  std::uniform_real_distribution<double> value(-1e3, 1e3);
-  std::array<double, N> v;
-  std::size_t agree = 0, flagged = 0, n = 0;
+  constexpr std::size_t count = std::size(specials);
   // (std::isfinite of a signalling NaN may itself raise FE_INVALID: asked
   // before the flags are cleared)
-  bool finite[std::size(specials)];
-  for(std::size_t k = 0; k < std::size(specials); ++k)
+  bool finite[count];
+  for(std::size_t k = 0; k < count; ++k)
     finite[k] = std::isfinite(specials[k]);
+  auto check = [&](const std::array<std::size_t, 3>& c, std::size_t lanes) {
+    const auto [agree, flagged, n] = c;
+    CHECK(agree == n);
+    CHECK(flagged == 5 * 60 * lanes); // each of the five in each place of each lane
+    CHECK(n == count * 60 * lanes * lanes);
+  };
   std::feclearexcept(FE_ALL_EXCEPT);
-  for(std::size_t k = 0; k < std::size(specials); ++k)
-    for(std::size_t at = 0; at < N; ++at) {
-      for(double& x : v)
-        x = value(random);
-      v[at] = specials[k];
-      const bool expected = finite[k];
-      agree += all_finite_four_lanes(v) == expected;
-      flagged += !expected;
-      ++n;
+  SECTION("two lanes") { check(pair_counts(specials, finite, count), 2); }
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+  SECTION("four lanes")
+  {
+    if(!four_lanes_available()) {
+      WARN("this processor has no AVX: the four-lane test is not run");
+      return;
     }
+    check(quad_counts(specials, finite, count), 4);
+  }
+#endif
   // the arithmetic flags nothing, so it cannot trap under feenableexcept
   CHECK(std::fetestexcept(FE_INVALID | FE_OVERFLOW | FE_DIVBYZERO) == 0);
-  CHECK(agree == n);
-  CHECK(flagged == 5 * N);
-  v.fill(limits::max());
-  CHECK(all_finite_four_lanes(v));
-}
-
-TEST_CASE("capped_math: all_finite_four_lanes agrees with std::isfinite", "[stiffness][capped]")
-{
-  if(!four_lanes_available()) {
-    WARN("this processor has no AVX: the four-lane test is not run");
-    return;
-  }
-  check_four_lanes_against_isfinite<60>();
-  check_four_lanes_against_isfinite<18>();
 }
 #endif

@@ -135,7 +135,8 @@ struct Ball_vertex_stiffness
   /// arithmetic in the two lanes of one register. Returns false, leaving S
   /// and T as they were, when either needs what only the one-simplex form
   /// does (an edge or a facet too small, a stiffness outside the range
-  /// where it is not capped, an exponent other than 1, 2, 5/2 or 3): call
+  /// where it is not capped, an exponent other than 1, 2, 5/2 or 3, a value
+  /// that is not finite): call
   /// add_symmetric_blocks for each, which also reports what is wrong.
   bool symmetric_blocks_of_two(const std::array<std::array<double, 2>, 3>& p,
                                const std::array<std::array<double, 2>, 3>& q, double* S, double* T) const
@@ -511,6 +512,16 @@ private:
     // value j of the flat list (u * S + m) of every lane
     auto at = [&](std::size_t j) -> const T& { return B[j / S][j % S]; };
     constexpr std::size_t n = std::size_t(pairs) * S;
+    // a lane with a value that is not finite declines, before anything is
+    // stored: the one-element form then reports it (the assembly tests only
+    // that form's values)
+    internal::Lane_finiteness<T> finiteness;
+#pragma GCC unroll 60
+    for(std::size_t k = 0; k < n; ++k)
+      finiteness.add(at(k));
+    for(std::size_t l = 0; l < L; ++l)
+      if(!finiteness.finite(l))
+        return false;
     std::size_t j = 0;
 #pragma GCC unroll 30
     for(; j + L <= n; j += L)

@@ -130,7 +130,8 @@ struct Model_description
 /// \endcode
 /// and, as a further option, those values of two elements at once, stored
 /// rather than added (false: nothing stored, the assembly then calls the
-/// one-element form for each):
+/// one-element form for each; true only when every value stored is finite,
+/// as the assembly tests only the one-element form's values):
 /// \code
 /// bool symmetric_blocks_of_two(const std::array<std::array<double, D>, D + 1>& p,
 ///                              const std::array<std::array<double, D>, D + 1>& q, double* S, double* T) const;

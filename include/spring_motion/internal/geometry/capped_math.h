@@ -10,8 +10,6 @@
 #include <cstdlib>
 #include <cstring>
 
-#include <spring_motion/internal/geometry/double_pair.h>
-
 namespace spring_motion {
 namespace internal {
 
@@ -67,32 +65,6 @@ inline bool all_finite(const double* v, std::size_t n)
   }
   return (carries >> 63) == 0;
 }
-
-#if SPRING_MOTION_HAS_DOUBLE_QUAD
-/// all_finite(v.data(), N) where AVX runs (four_lanes_available()), four
-/// values at a time: each value's exponent field alone, read as a double,
-/// is +inf exactly when the value is infinite or NaN and a finite power of
-/// two or 0 otherwise, so the largest of them is +inf exactly when one
-/// value is not finite. Neither operation can trap (no operand is a NaN).
-/// For a tetrahedron's 60 ball-vertex values this is 15 loads where the
-/// loop above runs 30 iterations of seven instructions: that loop held a
-/// quarter of the samples of the block assembly's own code (perf, the wing).
-template <std::size_t N>
-__attribute__((target("avx"))) inline bool all_finite_four_lanes(const std::array<double, N>& v)
-{
-  typedef double Unaligned __attribute__((vector_size(32), aligned(8), may_alias));
-  const Double_quad_mask exponent = {0x7ff0000000000000ll, 0x7ff0000000000000ll, 0x7ff0000000000000ll,
-                                     0x7ff0000000000000ll};
-  Double_quad largest = {0.0, 0.0, 0.0, 0.0};
-  std::size_t k = 0;
-  for(; k + 4 <= N; k += 4) {
-    const Double_quad e = Double_quad(Double_quad_mask(*reinterpret_cast<const Unaligned*>(v.data() + k)) & exponent);
-    largest = largest > e ? largest : e;
-  }
-  const double m = std::max(std::max(largest[0], largest[1]), std::max(largest[2], largest[3]));
-  return m != HUGE_VAL && all_finite(v.data() + k, N - k);
-}
-#endif
 
 /// min(x^e, max_stiffness) for x >= 0, with what depends on e alone (its
 /// size, whether it is a small whole number) worked out when made: a loop

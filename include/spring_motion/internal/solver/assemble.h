@@ -7,6 +7,7 @@
 #include <spring_motion/internal/solver/threads.h>
 #include <spring_motion/internal/geometry/angles.h>
 #include <spring_motion/internal/geometry/capped_math.h>
+#include <spring_motion/internal/geometry/double_pair.h>
 #include <spring_motion/internal/geometry/element_points.h>
 #include <spring_motion/internal/solver/free_system.h>
 #include <spring_motion/stiffness/Stiffness_model.h>
@@ -398,27 +399,25 @@ void add_element_matrix(const std::array<std::array<double, D>, D + 1>& p, const
     scatter_element_values<D, Model>(Ke, to, blocks);
 }
 
-// The same for elements t and u at once (Has_symmetric_blocks_of_two: the
+// The same for two elements at once (Has_symmetric_blocks_of_two: the
 // model's arithmetic for both in one register); false, with nothing added,
-// when the model declines the pair: then each takes add_element_matrix.
-// Each element's blocks are added as add_element_matrix adds them, t's
-// first: the same sums in the same order.
+// when the model declines the pair: then each takes add_element_matrix. A
+// model declines values that are not finite, so those stored here are not
+// tested again; add_element_matrix reports them. Each element's blocks are
+// added as add_element_matrix adds them, p's first: the same sums in the
+// same order.
 template <int D, class Model>
 bool add_element_matrices_of_two(const std::array<std::array<double, D>, D + 1>& p,
-                                 const std::array<std::array<double, D>, D + 1>& q, const Model& model, std::size_t t,
-                                 std::size_t u, const Index* to_t, const Index* to_u, const Block_targets& blocks,
-                                 long& first_bad,
-                                 std::exception_ptr& error)
+                                 const std::array<std::array<double, D>, D + 1>& q, const Model& model,
+                                 const Index* to_p, const Index* to_q, const Block_targets& blocks)
 {
   // stored by the model, so not cleared first (a clearing took a third of
   // this loop's time on the 2D paper mesh: the compiler's string store)
-  Element_values<D, Model> Kt, Ku;
-  if(!model.symmetric_blocks_of_two(p, q, Kt.data(), Ku.data()))
+  Element_values<D, Model> Kp, Kq;
+  if(!model.symmetric_blocks_of_two(p, q, Kp.data(), Kq.data()))
     return false;
-  if(finite_or_kept(Kt, t, first_bad, error))
-    scatter_element_values<D, Model>(Kt, to_t, blocks);
-  if(finite_or_kept(Ku, u, first_bad, error))
-    scatter_element_values<D, Model>(Ku, to_u, blocks);
+  scatter_element_values<D, Model>(Kp, to_p, blocks);
+  scatter_element_values<D, Model>(Kq, to_q, blocks);
   return true;
 }
 
@@ -427,16 +426,14 @@ bool add_element_matrices_of_two(const std::array<std::array<double, D>, D + 1>&
 // the same order.
 template <int D, class Model>
 bool add_element_matrices_of_four(const std::array<std::array<std::array<double, D>, D + 1>, 4>& p,
-                                  const Model& model, const Index* element, const Index* to,
-                                  const Block_targets& blocks, long& first_bad, std::exception_ptr& error)
+                                  const Model& model, const Index* to, const Block_targets& blocks)
 {
   std::array<Element_values<D, Model>, 4> K;
   if(!model.symmetric_blocks_of_four({&p[0], &p[1], &p[2], &p[3]},
                                      {K[0].data(), K[1].data(), K[2].data(), K[3].data()}))
     return false;
   for(std::size_t l = 0; l < 4; ++l)
-    if(all_finite_four_lanes(K[l]) || keep_not_finite(K[l], element[l], first_bad, error))
-      scatter_element_values<D, Model>(K[l], to + l * (D + 1) * (D + 1), blocks);
+    scatter_element_values<D, Model>(K[l], to + l * (D + 1) * (D + 1), blocks);
   return true;
 }
 
@@ -556,16 +553,15 @@ void add_element_matrices(const std::vector<typename Spring_network<D>::Point>& 
                                                 element_points<D>(vertices, x, std::size_t(s + 1)),
                                                 element_points<D>(vertices, x, std::size_t(s + 2)),
                                                 element_points<D>(vertices, x, std::size_t(s + 3))},
-                                               model, &elements[std::size_t(s)], to, blocks, first_bad, error)) {
+                                               model, to, blocks)) {
               s += 4;
               continue;
             }
           if constexpr(Has_symmetric_blocks_of_two<Model, D>::value)
             if(s + 1 < end &&
                add_element_matrices_of_two<D>(element_points<D>(vertices, x, std::size_t(s)),
-                                              element_points<D>(vertices, x, std::size_t(s + 1)), model,
-                                              elements[std::size_t(s)], elements[std::size_t(s + 1)], to,
-                                              to + (D + 1) * (D + 1), blocks, first_bad, error)) {
+                                              element_points<D>(vertices, x, std::size_t(s + 1)), model, to,
+                                              to + (D + 1) * (D + 1), blocks)) {
               s += 2;
               continue;
             }

@@ -169,8 +169,8 @@ SPRING_MOTION_LANES_INLINE void store_transposed(const Double_quad& a, const Dou
 /// so the largest of them is +inf in a lane exactly when one of its values
 /// was not. Neither operation can trap (no operand is a NaN). For a
 /// kernel's values while they are in its registers: tested after they were
-/// stored, a ball-vertex tetrahedron's 60 values took 15 loads each, and the
-/// test held 4% of a one-thread ball-vertex run on the wing (perf).
+/// stored, the 60 values of a ball-vertex tetrahedron took 15 loads, and
+/// the test held 4% of a one-thread ball-vertex run on the wing (perf).
 template <class T>
 struct Lane_finiteness;
 

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cfenv>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -518,6 +519,90 @@ TEST_CASE("element_sines_squared_above for tetrahedra with two bounds: certain w
   CHECK_FALSE(si::element_sines_squared_above<3>(corner, 0.6, 1.0)); // a right angle is not above 1
   const std::array<std::array<double, 3>, 4> flat{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}};
   CHECK_FALSE(si::element_sines_squared_above<3>(flat, 0, 0.5));
+}
+
+// The one-bound test of four tetrahedra at once (one per lane of an AVX
+// register) answers what the scalar test answers for each, at bounds right
+// at each lane's smallest sin^2, on random shapes of sizes out of the test's
+// range too (those lanes answer false without forming the products that
+// could overflow) and on flat, coincident and non-finite corners in every
+// lane; and it raises no overflow, invalid or division flag that the scalar
+// tests of the same four do not.
+TEST_CASE("element_sines_squared_above for four tetrahedra at once answers as for each", "[skewness][angles]")
+{
+  namespace si = spring_motion::internal;
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+  if(!si::four_lanes_available()) {
+    WARN("no AVX on this processor: the four-lane test is not used, nor tested");
+    return;
+  }
+  using Tet = std::array<std::array<double, 3>, 4>;
+  std::mt19937_64 rng(20261207);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> squash(0, 3);
+  std::vector<Tet> shapes;
+  std::vector<double> smallest;
+  for(int trial = 0; trial < 8000; ++trial) {
+    const double f = std::pow(10.0, -2 * squash(rng));
+    Tet p;
+    for(auto& q : p)
+      q = {u(rng), u(rng), f * u(rng)};
+    const double size = std::pow(10.0, double(int(rng() % 81) - 40));
+    for(auto& q : p)
+      for(auto& x : q)
+        x *= size;
+    long double least = 1;
+    for(const long double a : extended_dihedral_angles(p))
+      least = std::min(least, std::sin(a) * std::sin(a));
+    shapes.push_back(p);
+    smallest.push_back(double(least));
+  }
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
+  const std::vector<Tet> special{{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}},
+                                 {{{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, {0, 0, 1}}},
+                                 {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, inf}}},
+                                 {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, nan}}},
+                                 {{{0, 0, 0}, {1e-31, 0, 0}, {0, 1e-31, 0}, {0, 0, 1e-31}}},
+                                 {{{0, 0, 0}, {1e31, 0, 0}, {0, 1e31, 0}, {0, 0, 1e31}}},
+                                 {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}};
+  // each special shape in each lane, the other lanes random
+  for(std::size_t k = 0; k < special.size(); ++k)
+    for(std::size_t l = 0; l < 4; ++l) {
+      const std::size_t at = shapes.size() - 4 * (k * 4 + l + 1) + l;
+      shapes[at] = special[k];
+      smallest[at] = 0.5;
+    }
+  std::size_t lanes_true = 0, lanes_false = 0;
+  for(std::size_t g = 0; g + 4 <= shapes.size(); g += 4) {
+    std::array<const double*, 4> t[4];
+    for(std::size_t l = 0; l < 4; ++l)
+      for(std::size_t k = 0; k < 4; ++k)
+        t[l][k] = shapes[g + l][k].data();
+    for(std::size_t at = 0; at < 4; ++at)
+      for(const double factor : bound_factors) {
+        const double bound = smallest[g + at] * factor;
+        std::feclearexcept(FE_ALL_EXCEPT);
+        bool scalar[4];
+        for(std::size_t l = 0; l < 4; ++l)
+          scalar[l] = si::element_sines_squared_above<3>(shapes[g + l], bound);
+        const int scalar_flags = std::fetestexcept(FE_OVERFLOW | FE_INVALID | FE_DIVBYZERO);
+        std::feclearexcept(FE_ALL_EXCEPT);
+        bool lanes[4];
+        si::dihedral_sines_squared_above(t, bound, lanes);
+        const int lane_flags = std::fetestexcept(FE_OVERFLOW | FE_INVALID | FE_DIVBYZERO);
+        INFO("group " << g << ", bound " << bound);
+        CHECK((lane_flags & ~scalar_flags) == 0);
+        for(std::size_t l = 0; l < 4; ++l) {
+          CHECK(lanes[l] == scalar[l]);
+          ++(lanes[l] ? lanes_true : lanes_false);
+        }
+      }
+  }
+  CHECK(lanes_true > 20000);
+  CHECK(lanes_false > 20000);
+#else
+  WARN("no four-lane form in this build");
+#endif
 }
 
 // Copies of the elements holding the smallest and the largest angle, moved

@@ -151,17 +151,7 @@ public:
   template <int D>
   bool add_element(const std::array<std::array<double, D>, D + 1>& p)
   {
-    const double lo = std::min(smallest_, guess_lo_), hi = std::max(r_hi_, guess_hi_);
-    if(lo != bound_smallest_ || hi != bound_largest_) {
-      bound_smallest_ = lo;
-      bound_largest_ = hi;
-      // sin^2 bounds of the acute and the obtuse angles, never_passed where
-      // no angle of that kind can pass: no element yet, or the range (lo, hi)
-      // not containing a right angle (sin^2 alone would not bound its far end)
-      const bool around_right = lo >= 0 && lo < pi / 2 && hi > pi / 2 && hi <= pi;
-      acute_bound_ = around_right ? std::sin(lo) * std::sin(lo) : never_passed;
-      obtuse_bound_ = around_right ? std::sin(hi) * std::sin(hi) : never_passed;
-    }
+    refresh_bounds();
     if(!not_a_number_) {
       // first the larger bound for all the angles, which on the wing passes
       // nearly every element over; then the bound of each kind of angle, while
@@ -183,6 +173,28 @@ public:
     }
     add(element_extreme_angles<D>(p));
     return false;
+  }
+  /// The bound add_element tests an element's sin^2 against first, for a
+  /// test of several elements at once; at least 1 when none can be passed
+  /// over by it.
+  double first_bound()
+  {
+    refresh_bounds();
+    return not_a_number_ ? never_passed : std::max(acute_bound_, obtuse_bound_);
+  }
+  /// add_element for an element that the test of first_bound() answered
+  /// `passed` for, that bound read before this element and any added after
+  /// it: the same result. The bound only falls as elements are added (the
+  /// extremes only widen, and a range that contains a right angle keeps
+  /// containing it), so an element passed then would be passed now.
+  template <int D>
+  bool add_element(const std::array<std::array<double, D>, D + 1>& p, bool passed)
+  {
+    if(passed && !not_a_number_) {
+      ++count_;
+      return true;
+    }
+    return add_element<D>(p);
   }
   /// Passes over, besides, the elements whose angles all lie strictly
   /// inside (lo, hi), a guess of the set's extremes (a motion's previous
@@ -234,6 +246,20 @@ public:
 
 private:
   static constexpr double slack = 1e-12;
+  void refresh_bounds()
+  {
+    const double lo = std::min(smallest_, guess_lo_), hi = std::max(r_hi_, guess_hi_);
+    if(lo != bound_smallest_ || hi != bound_largest_) {
+      bound_smallest_ = lo;
+      bound_largest_ = hi;
+      // sin^2 bounds of the acute and the obtuse angles, never_passed where
+      // no angle of that kind can pass: no element yet, or the range (lo, hi)
+      // not containing a right angle (sin^2 alone would not bound its far end)
+      const bool around_right = lo >= 0 && lo < pi / 2 && hi > pi / 2 && hi <= pi;
+      acute_bound_ = around_right ? std::sin(lo) * std::sin(lo) : never_passed;
+      obtuse_bound_ = around_right ? std::sin(hi) * std::sin(hi) : never_passed;
+    }
+  }
   void take(double lo, double hi)
   {
     smallest_ = std::min(smallest_, lo);

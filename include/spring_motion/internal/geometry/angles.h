@@ -410,6 +410,61 @@ inline bool dihedral_sines_squared_test(const std::array<std::array<double, 3>, 
          (v2 * l23 > bound(g0x, g0y, g0z, g1x, g1y, g1z) * (f0 * f1));
 }
 
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi" // see double_pair.h
+/// dihedral_sines_squared_test with one bound (element_sines_squared_above)
+/// of four tetrahedra at once, corners t[0] to t[3], one per lane of an AVX
+/// register: above[l] is tetrahedron l's answer, the scalar test's. Each
+/// lane performs the scalar test's operations in its order; a lane whose
+/// longest squared edge is out of range answers false, as the scalar test
+/// does before forming any product, and its coordinates are replaced by
+/// zeros first so that its products cannot overflow (or trap). The
+/// per-step quality passes over nearly every tetrahedron of the wing by this
+/// test, which held a sixth of a one-thread grid-scaled run. Call only
+/// where four_lanes_available().
+__attribute__((target("avx"))) inline void dihedral_sines_squared_above(const std::array<const double*, 4> (&t)[4],
+                                                                        double sine_squared, bool (&above)[4])
+{
+  typedef Double_quad T;
+  T c[12];
+  for(std::size_t k = 0; k < 4; ++k)
+    for(std::size_t j = 0; j < 3; ++j)
+      c[3 * k + j] = T{t[0][k][j], t[1][k][j], t[2][k][j], t[3][k][j]};
+  T ax = c[3] - c[0], ay = c[4] - c[1], az = c[5] - c[2];
+  T bx = c[6] - c[0], by = c[7] - c[1], bz = c[8] - c[2];
+  T cx = c[9] - c[0], cy = c[10] - c[1], cz = c[11] - c[2];
+  const T dx = bx - ax, dy = by - ay, dz = bz - az; // edge 12
+  const T ex = cx - ax, ey = cy - ay, ez = cz - az; // edge 13
+  const T hx = cx - bx, hy = cy - by, hz = cz - bz; // edge 23
+  T l01 = ax * ax + ay * ay + az * az, l02 = bx * bx + by * by + bz * bz, l03 = cx * cx + cy * cy + cz * cz,
+    l12 = dx * dx + dy * dy + dz * dz, l13 = ex * ex + ey * ey + ez * ez, l23 = hx * hx + hy * hy + hz * hz;
+  // std::max's choice among the six: the first largest
+  T longest = l01;
+  for(const T l : {l02, l03, l12, l13, l23})
+    longest = longest < l ? l : longest;
+  const auto in_range = (longest >= 1e-60) & (longest <= 1e60);
+  const T zero = lanes_of<T>(0);
+  for(T* v : {&ax, &ay, &az, &bx, &by, &bz, &cx, &cy, &cz, &l01, &l02, &l03, &l12, &l13, &l23, &longest})
+    *v = in_range ? *v : zero;
+  const T g1x = by * cz - bz * cy, g1y = bz * cx - bx * cz, g1z = bx * cy - by * cx;
+  const T g2x = cy * az - cz * ay, g2y = cz * ax - cx * az, g2z = cx * ay - cy * ax;
+  const T g3x = ay * bz - az * by, g3y = az * bx - ax * bz, g3z = ax * by - ay * bx;
+  const T g0x = -(g1x + g2x + g3x), g0y = -(g1y + g2y + g3y), g0z = -(g1z + g2z + g3z);
+  const T v = ax * g1x + ay * g1y + az * g1z;
+  const T f0 = g0x * g0x + g0y * g0y + g0z * g0z, f1 = g1x * g1x + g1y * g1y + g1z * g1z,
+          f2 = g2x * g2x + g2y * g2y + g2z * g2z, f3 = g3x * g3x + g3y * g3y + g3z * g3z;
+  const T v2 = v * v;
+  const T ta = lanes_of<T>(sine_squared * (1 + 1e-6));
+  const auto passed = in_range & (v2 >= 1e-12 * longest * longest * longest) & (v2 * l01 > ta * (f2 * f3)) &
+                      (v2 * l02 > ta * (f1 * f3)) & (v2 * l03 > ta * (f1 * f2)) & (v2 * l12 > ta * (f0 * f3)) &
+                      (v2 * l13 > ta * (f0 * f2)) & (v2 * l23 > ta * (f0 * f1));
+  for(std::size_t l = 0; l < 4; ++l)
+    above[l] = passed[l] != 0;
+}
+#pragma GCC diagnostic pop
+#endif
+
 /// The same test for the interior angles of triangle p: sin^2 of the angle
 /// between the edges u and w leaving a vertex is (u x w)^2 / (|u|^2 |w|^2),
 /// compared by products, and the angle is acute where u . w > 0. It decides

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cfenv>
+#include <cstring>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -600,6 +601,38 @@ TEST_CASE("element_sines_squared_above for four tetrahedra at once answers as fo
   }
   CHECK(lanes_true > 20000);
   CHECK(lanes_false > 20000);
+  // the volumes of the same four, scaled: signed_measure's bits, a zero's
+  // sign too (the flat shapes)
+  std::size_t zeros = 0;
+  for(std::size_t g = 0; g + 4 <= shapes.size(); g += 4) {
+    std::array<const double*, 4> t[4];
+    for(std::size_t l = 0; l < 4; ++l)
+      for(std::size_t k = 0; k < 4; ++k)
+        t[l][k] = shapes[g + l][k].data();
+    for(const double scale : {1.0, std::ldexp(1.0, -20), std::ldexp(1.0, 30), 0.75})
+      for(int mirror = 0; mirror < 2; ++mirror) {
+        // mirrored (two corners swapped): the other sign, and the other zero
+        std::array<const double*, 4> m[4];
+        for(std::size_t l = 0; l < 4; ++l) {
+          m[l] = t[l];
+          if(mirror)
+            std::swap(m[l][1], m[l][2]);
+        }
+        double lanes[4];
+        si::scaled_signed_measures(m, scale, lanes);
+        for(std::size_t l = 0; l < 4; ++l) {
+          Tet p;
+          for(std::size_t k = 0; k < 4; ++k)
+            for(std::size_t c = 0; c < 3; ++c)
+              p[k][c] = m[l][k][c] * scale;
+          const double scalar = si::signed_measure(p);
+          INFO("group " << g << ", lane " << l << ", scale " << scale);
+          CHECK(std::memcmp(&lanes[l], &scalar, sizeof(double)) == 0);
+          zeros += scalar == 0;
+        }
+      }
+  }
+  CHECK(zeros >= 8);
 #else
   WARN("no four-lane form in this build");
 #endif

@@ -431,7 +431,8 @@ private:
       if(guess)
         all.guess(quality_guess_.smallest + quality_guess_.inset, quality_guess_.largest - quality_guess_.inset);
       // tetrahedra four at a time where the processor has AVX: the bound
-      // test of each group's elements in one register (passed[])
+      // test and the measures of a group's four in AVX registers
+      // (test_four_quality_lanes)
       const long group = four_quality_lanes() ? 4 : 1, groups = (m + group - 1) / group;
       internal::in_team(internal::thread_count(threads, std::size_t(m)), [&] {
         internal::Quality_extremes my_all = all, my_moving;
@@ -440,21 +441,30 @@ private:
         for(long h = 0; h < groups; ++h) {
           const long first = h * group, last = std::min(m, first + group);
           bool passed[4] = {false, false, false, false};
-          if(last - first == 4)
-            test_four_quality_lanes(slots, xt, std::size_t(first), my_all, passed);
+          double measures[4];
+          const bool measured =
+              last - first == 4 && test_four_quality_lanes(slots, xt, std::size_t(first), my_all, passed, measures);
           for(long t = first; t < last; ++t) {
-            const auto p = internal::traversal_element_points<D>(slots, xt, std::size_t(t));
-            // Most elements can hold neither an extreme angle (passed over by a
-            // cheap bound) nor an extreme size ratio: a measure farther than
-            // 1e-12 (relative) inside the extremes so far times the initial one
-            // gives a quotient inside them too, and is not divided.
-            if(traversal_moving_[std::size_t(t)]) {
-              const auto e = internal::element_extreme_angles<D>(p);
-              my_all.add(e);
-              my_moving.add(e);
-            } else
-              my_all.add_element<D>(p, passed[t - first]);
-            const double measure = scaled_measure(p), initial = initial_measure_[std::size_t(t)];
+            const std::size_t l = std::size_t(t - first);
+            double measure;
+            // Most elements can hold neither an extreme angle (passed over by
+            // a cheap bound) nor an extreme size ratio: a measure farther
+            // than 1e-12 (relative) inside the extremes so far times the
+            // initial one gives a quotient inside them too, and is not
+            // divided.
+            if(measured && passed[l] && my_all.pass_over())
+              measure = measures[l];
+            else {
+              const auto p = internal::traversal_element_points<D>(slots, xt, std::size_t(t));
+              if(traversal_moving_[std::size_t(t)]) {
+                const auto e = internal::element_extreme_angles<D>(p);
+                my_all.add(e);
+                my_moving.add(e);
+              } else
+                my_all.add_element<D>(p);
+              measure = measured ? measures[l] : scaled_measure(p);
+            }
+            const double initial = initial_measure_[std::size_t(t)];
             const double below = my_lo * initial, above = my_hi * initial;
             if(!(initial > 0 && measure - below > 1e-12 * std::abs(below) &&
                  above - measure > 1e-12 * std::abs(above))) {
@@ -503,29 +513,33 @@ private:
 #endif
   }
 
-  // passed[l]: whether the traversal's tetrahedron first + l passes the
-  // first bound test of `all` (as add_element would begin), all four in one
-  // AVX register; a group with a tetrahedron at the moving boundary (whose
-  // angles are all computed) is left to add_element.
-  void test_four_quality_lanes(const internal::Angle_slots& slots, const std::vector<Point>& xt, std::size_t first,
-                               internal::Quality_extremes& all, bool (&passed)[4]) const
+  // For the traversal's tetrahedra first to first + 3, four at a time in
+  // AVX registers: passed[l], whether tetrahedron first + l passes the
+  // first bound test of `all` (as add_element would begin), and measures[l],
+  // its scaled_measure; false, with neither written, for a group with a
+  // tetrahedron at the moving boundary (whose angles are all computed), when
+  // no bound can pass an element, or when the scale is not a plain product.
+  bool test_four_quality_lanes(const internal::Angle_slots& slots, const std::vector<Point>& xt, std::size_t first,
+                               internal::Quality_extremes& all, bool (&passed)[4], double (&measures)[4]) const
   {
 #if SPRING_MOTION_HAS_DOUBLE_QUAD
     if constexpr(D == 3) {
       for(std::size_t l = 0; l < 4; ++l)
         if(traversal_moving_[first + l])
-          return;
+          return false;
       const double bound = all.first_bound();
-      if(!(bound < 1))
-        return;
+      if(!(bound < 1) || measure_scale_ == 0)
+        return false;
       std::array<const double*, 4> t[4];
       for(std::size_t l = 0; l < 4; ++l)
         t[l] = internal::traversal_element_corners<3>(slots, xt, first + l);
       internal::dihedral_sines_squared_above(t, bound, passed);
-      return;
+      internal::scaled_signed_measures(t, measure_scale_, measures);
+      return true;
     }
 #endif
-    (void)slots, (void)xt, (void)first, (void)all, (void)passed;
+    (void)slots, (void)xt, (void)first, (void)all, (void)passed, (void)measures;
+    return false;
   }
 
   struct Attempt

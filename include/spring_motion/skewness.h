@@ -182,19 +182,18 @@ public:
     refresh_bounds();
     return not_a_number_ ? never_passed : std::max(acute_bound_, obtuse_bound_);
   }
-  /// add_element for an element that the test of first_bound() answered
-  /// `passed` for, that bound read before this element and any added after
-  /// it: the same result. The bound only falls as elements are added (the
-  /// extremes only widen, and a range that contains a right angle keeps
-  /// containing it), so an element passed then would be passed now.
-  template <int D>
-  bool add_element(const std::array<std::array<double, D>, D + 1>& p, bool passed)
+  /// Counts an element that the test of first_bound() passed over, that
+  /// bound read before this element and any added after it, as add_element
+  /// would: the bound only falls as elements are added (the extremes only
+  /// widen, and a range that contains a right angle keeps containing it), so
+  /// the element would pass it now. False, with nothing counted, when an
+  /// angle that is not a number has been added since: then add_element.
+  bool pass_over()
   {
-    if(passed && !not_a_number_) {
-      ++count_;
-      return true;
-    }
-    return add_element<D>(p);
+    if(not_a_number_)
+      return false;
+    ++count_;
+    return true;
   }
   /// Passes over, besides, the elements whose angles all lie strictly
   /// inside (lo, hi), a guess of the set's extremes (a motion's previous

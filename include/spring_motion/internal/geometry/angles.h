@@ -347,10 +347,11 @@ inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<do
 /// L^3 for its longest edge L, which bounds every edge below by 1e-6 L and
 /// every |g_i| below by 1e-6 L^2: the rounding errors of the products are
 /// then below 1e-9 of their values, far inside the comparison's margin of
-/// 1e-6. L^2 between 1e-60 and 1e60 (checked before any product of the
-/// squared lengths or the edges' cross products; a coordinate that is
-/// infinite fails it, one that is not a number fails it or the comparisons)
-/// keeps the products finite and normal.
+/// 1e-6. L^2 between 1e-60 and 1e60 (an element out of it answers false,
+/// its coordinates replaced by zeros before any product of the squared
+/// lengths or the edges' cross products; a coordinate that is infinite fails
+/// it, one that is not a number fails it or the comparisons) keeps the
+/// products finite and normal.
 ///
 /// With two bounds, an acute angle is held to `acute` and an obtuse one to
 /// `obtuse`: every angle lies strictly between alpha and pi - beta for
@@ -361,88 +362,37 @@ inline std::array<double, 2> dihedral_angle_range(const std::array<std::array<do
 /// angle, where rounding may give it the wrong sign, sin^2 is within 1e-9 of
 /// 1 and passes either bound or neither unless a bound lies within the
 /// margin of 1. With one bound (Kinds false) no dot product is formed.
-template <bool Kinds>
-inline bool dihedral_sines_squared_test(const std::array<std::array<double, 3>, 4>& p, double acute, double obtuse)
-{
-  const double ax = p[1][0] - p[0][0], ay = p[1][1] - p[0][1], az = p[1][2] - p[0][2];
-  const double bx = p[2][0] - p[0][0], by = p[2][1] - p[0][1], bz = p[2][2] - p[0][2];
-  const double cx = p[3][0] - p[0][0], cy = p[3][1] - p[0][1], cz = p[3][2] - p[0][2];
-  const double dx = bx - ax, dy = by - ay, dz = bz - az; // edge 12
-  const double ex = cx - ax, ey = cy - ay, ez = cz - az; // edge 13
-  const double hx = cx - bx, hy = cy - by, hz = cz - bz; // edge 23
-  // squared lengths in Simplex_tables<3>::edge order: 01 02 03 12 13 23
-  const double l01 = ax * ax + ay * ay + az * az, l02 = bx * bx + by * by + bz * bz,
-               l03 = cx * cx + cy * cy + cz * cz, l12 = dx * dx + dy * dy + dz * dz,
-               l13 = ex * ex + ey * ey + ez * ez, l23 = hx * hx + hy * hy + hz * hz;
-  const double longest = std::max({l01, l02, l03, l12, l13, l23});
-  // before any product of the squared lengths or the edges' cross products:
-  // out of this range the normals' squares (fourth powers of the
-  // coordinates) and the products of sixth and eighth powers could overflow
-  // (and trap under feenableexcept)
-  if(!(longest >= 1e-60 && longest <= 1e60))
-    return false;
-  const double g1x = by * cz - bz * cy, g1y = bz * cx - bx * cz, g1z = bx * cy - by * cx;
-  const double g2x = cy * az - cz * ay, g2y = cz * ax - cx * az, g2z = cx * ay - cy * ax;
-  const double g3x = ay * bz - az * by, g3y = az * bx - ax * bz, g3z = ax * by - ay * bx;
-  const double g0x = -(g1x + g2x + g3x), g0y = -(g1y + g2y + g3y), g0z = -(g1z + g2z + g3z);
-  const double v = ax * g1x + ay * g1y + az * g1z;
-  const double f0 = g0x * g0x + g0y * g0y + g0z * g0z, f1 = g1x * g1x + g1y * g1y + g1z * g1z,
-               f2 = g2x * g2x + g2y * g2y + g2z * g2z, f3 = g3x * g3x + g3y * g3y + g3z * g3z;
-  const double v2 = v * v;
-  const double ta = acute * (1 + 1e-6), to = obtuse * (1 + 1e-6);
-  // the bound of the angle between faces i and j
-  auto bound = [&](double gix, double giy, double giz, double gjx, double gjy, double gjz) {
-    if constexpr(Kinds)
-      return gix * gjx + giy * gjy + giz * gjz < 0 ? ta : to;
-    else {
-      (void)gix, (void)giy, (void)giz, (void)gjx, (void)gjy, (void)gjz, (void)to;
-      return ta;
-    }
-  };
-  // the faces at edge k are those opposite its two other vertices
-  // (Simplex_tables<3>::other); & rather than &&: no branch per edge
-  return (v2 >= 1e-12 * longest * longest * longest) &
-         (v2 * l01 > bound(g2x, g2y, g2z, g3x, g3y, g3z) * (f2 * f3)) &
-         (v2 * l02 > bound(g1x, g1y, g1z, g3x, g3y, g3z) * (f1 * f3)) &
-         (v2 * l03 > bound(g1x, g1y, g1z, g2x, g2y, g2z) * (f1 * f2)) &
-         (v2 * l12 > bound(g0x, g0y, g0z, g3x, g3y, g3z) * (f0 * f3)) &
-         (v2 * l13 > bound(g0x, g0y, g0z, g2x, g2y, g2z) * (f0 * f2)) &
-         (v2 * l23 > bound(g0x, g0y, g0z, g1x, g1y, g1z) * (f0 * f1));
-}
-
+///
+/// Written once over the lane type T (double_pair.h), as
+/// dihedral_inverse_sin_squared_lanes(): `c` holds the four corners'
+/// coordinates, corner by corner, and `above` receives the answer as T's
+/// comparison result (a bool, or a mask per lane; not returned, which would
+/// pass a four-lane value back).
 #if SPRING_MOTION_HAS_DOUBLE_QUAD
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi" // see double_pair.h
-/// dihedral_sines_squared_test with one bound (element_sines_squared_above)
-/// of four tetrahedra at once, corners t[0] to t[3], one per lane of an AVX
-/// register: above[l] is tetrahedron l's answer, the scalar test's. Each
-/// lane performs the scalar test's operations in its order; a lane whose
-/// longest squared edge is out of range answers false, as the scalar test
-/// does before forming any product, and its coordinates are replaced by
-/// zeros first so that its products cannot overflow (or trap). The
-/// per-step quality passes over nearly every tetrahedron of the wing by this
-/// test, which held a sixth of a one-thread grid-scaled run. Call only
-/// where four_lanes_available().
-__attribute__((target("avx"))) inline void dihedral_sines_squared_above(const std::array<const double*, 4> (&t)[4],
-                                                                        double sine_squared, bool (&above)[4])
+#endif
+template <bool Kinds, class T, class Answer>
+SPRING_MOTION_LANES_INLINE void dihedral_sines_squared_lanes(const T (&c)[12], double acute, double obtuse,
+                                                             Answer& above)
 {
-  typedef Double_quad T;
-  T c[12];
-  for(std::size_t k = 0; k < 4; ++k)
-    for(std::size_t j = 0; j < 3; ++j)
-      c[3 * k + j] = T{t[0][k][j], t[1][k][j], t[2][k][j], t[3][k][j]};
   T ax = c[3] - c[0], ay = c[4] - c[1], az = c[5] - c[2];
   T bx = c[6] - c[0], by = c[7] - c[1], bz = c[8] - c[2];
   T cx = c[9] - c[0], cy = c[10] - c[1], cz = c[11] - c[2];
   const T dx = bx - ax, dy = by - ay, dz = bz - az; // edge 12
   const T ex = cx - ax, ey = cy - ay, ez = cz - az; // edge 13
   const T hx = cx - bx, hy = cy - by, hz = cz - bz; // edge 23
+  // squared lengths in Simplex_tables<3>::edge order: 01 02 03 12 13 23
   T l01 = ax * ax + ay * ay + az * az, l02 = bx * bx + by * by + bz * bz, l03 = cx * cx + cy * cy + cz * cz,
     l12 = dx * dx + dy * dy + dz * dz, l13 = ex * ex + ey * ey + ez * ez, l23 = hx * hx + hy * hy + hz * hz;
   // std::max's choice among the six: the first largest
   T longest = l01;
   for(const T l : {l02, l03, l12, l13, l23})
     longest = longest < l ? l : longest;
+  // before any product of the squared lengths or the edges' cross products:
+  // out of this range the normals' squares (fourth powers of the
+  // coordinates) and the products of sixth and eighth powers could overflow
+  // (and trap under feenableexcept)
   const auto in_range = (longest >= 1e-60) & (longest <= 1e60);
   const T zero = lanes_of<T>(0);
   for(T* v : {&ax, &ay, &az, &bx, &by, &bz, &cx, &cy, &cz, &l01, &l02, &l03, &l12, &l13, &l23, &longest})
@@ -455,12 +405,80 @@ __attribute__((target("avx"))) inline void dihedral_sines_squared_above(const st
   const T f0 = g0x * g0x + g0y * g0y + g0z * g0z, f1 = g1x * g1x + g1y * g1y + g1z * g1z,
           f2 = g2x * g2x + g2y * g2y + g2z * g2z, f3 = g3x * g3x + g3y * g3y + g3z * g3z;
   const T v2 = v * v;
-  const T ta = lanes_of<T>(sine_squared * (1 + 1e-6));
-  const auto passed = in_range & (v2 >= 1e-12 * longest * longest * longest) & (v2 * l01 > ta * (f2 * f3)) &
-                      (v2 * l02 > ta * (f1 * f3)) & (v2 * l03 > ta * (f1 * f2)) & (v2 * l12 > ta * (f0 * f3)) &
-                      (v2 * l13 > ta * (f0 * f2)) & (v2 * l23 > ta * (f0 * f1));
+  const T ta = lanes_of<T>(acute * (1 + 1e-6)), to = lanes_of<T>(obtuse * (1 + 1e-6));
+  // The bound of the angle at edge k, between the faces opposite its two
+  // other vertices (Simplex_tables<3>::other). Written out, not through a
+  // lambda: a four-lane value would pass to a function not compiled for AVX.
+  T b01 = ta, b02 = ta, b03 = ta, b12 = ta, b13 = ta, b23 = ta;
+  if constexpr(Kinds) {
+    b01 = g2x * g3x + g2y * g3y + g2z * g3z < 0 ? ta : to;
+    b02 = g1x * g3x + g1y * g3y + g1z * g3z < 0 ? ta : to;
+    b03 = g1x * g2x + g1y * g2y + g1z * g2z < 0 ? ta : to;
+    b12 = g0x * g3x + g0y * g3y + g0z * g3z < 0 ? ta : to;
+    b13 = g0x * g2x + g0y * g2y + g0z * g2z < 0 ? ta : to;
+    b23 = g0x * g1x + g0y * g1y + g0z * g1z < 0 ? ta : to;
+  } else
+    (void)to;
+  // & rather than &&: no branch per edge
+  above = in_range & (v2 >= 1e-12 * longest * longest * longest) & (v2 * l01 > b01 * (f2 * f3)) &
+         (v2 * l02 > b02 * (f1 * f3)) & (v2 * l03 > b03 * (f1 * f2)) & (v2 * l12 > b12 * (f0 * f3)) &
+         (v2 * l13 > b13 * (f0 * f2)) & (v2 * l23 > b23 * (f0 * f1));
+}
+
+template <bool Kinds>
+inline bool dihedral_sines_squared_test(const std::array<std::array<double, 3>, 4>& p, double acute, double obtuse)
+{
+  double c[12];
+  for(std::size_t k = 0; k < 4; ++k)
+    for(std::size_t j = 0; j < 3; ++j)
+      c[3 * k + j] = p[k][j];
+  bool above;
+  dihedral_sines_squared_lanes<Kinds>(c, acute, obtuse, above);
+  return above;
+}
+
+#if SPRING_MOTION_HAS_DOUBLE_QUAD
+/// dihedral_sines_squared_test with one bound (element_sines_squared_above)
+/// of four tetrahedra at once, corners t[0] to t[3], one per lane of an AVX
+/// register: above[l] is tetrahedron l's answer, the same (each lane performs
+/// the scalar test's operations in its order). The per-step quality passes
+/// over nearly every tetrahedron of the wing by this test. Call only where
+/// four_lanes_available().
+__attribute__((target("avx"))) inline void dihedral_sines_squared_above(const std::array<const double*, 4> (&t)[4],
+                                                                        double sine_squared, bool (&above)[4])
+{
+  Double_quad c[12];
+  for(std::size_t k = 0; k < 4; ++k)
+    for(std::size_t j = 0; j < 3; ++j)
+      c[3 * k + j] = Double_quad{t[0][k][j], t[1][k][j], t[2][k][j], t[3][k][j]};
+  Double_quad_mask passed;
+  dihedral_sines_squared_lanes<false>(c, sine_squared, sine_squared, passed);
   for(std::size_t l = 0; l < 4; ++l)
     above[l] = passed[l] != 0;
+}
+
+/// The signed volumes of four tetrahedra at once, corners t[0] to t[3], their
+/// coordinates multiplied by `scale` first: out[l] is
+/// signed_measure(tetrahedron l's corners times scale), the same bits (each
+/// lane performs its operations in its order). Call only where
+/// four_lanes_available().
+__attribute__((target("avx"))) inline void scaled_signed_measures(const std::array<const double*, 4> (&t)[4],
+                                                                  double scale, double (&out)[4])
+{
+  typedef Double_quad T;
+  T c[12];
+  const T s = lanes_of<T>(scale);
+  for(std::size_t k = 0; k < 4; ++k)
+    for(std::size_t j = 0; j < 3; ++j)
+      c[3 * k + j] = T{t[0][k][j], t[1][k][j], t[2][k][j], t[3][k][j]} * s;
+  const T ax = c[3] - c[0], ay = c[4] - c[1], az = c[5] - c[2];
+  const T bx = c[6] - c[0], by = c[7] - c[1], bz = c[8] - c[2];
+  const T cx = c[9] - c[0], cy = c[10] - c[1], cz = c[11] - c[2];
+  // dot(a, cross(b, c)) as dot() sums it, from 0 (which keeps a zero's sign)
+  const T x = by * cz - bz * cy, y = bz * cx - bx * cz, z = bx * cy - by * cx;
+  const T m = (((lanes_of<T>(0) + ax * x) + ay * y) + az * z) / lanes_of<T>(6.0);
+  for(std::size_t l = 0; l < 4; ++l)
+    out[l] = m[l];
 }
 #pragma GCC diagnostic pop
 #endif

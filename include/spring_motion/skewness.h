@@ -182,12 +182,12 @@ public:
     refresh_bounds();
     return not_a_number_ ? never_passed : std::max(acute_bound_, obtuse_bound_);
   }
-  /// Counts an element that the test of first_bound() passed over, that
-  /// bound read before this element and any added after it, as add_element
-  /// would: the bound only falls as elements are added (the extremes only
-  /// widen, and a range that contains a right angle keeps containing it), so
-  /// the element would pass it now. False, with nothing counted, when an
-  /// angle that is not a number has been added since: then add_element.
+  /// Counts an element that passed the test at first_bound(), read before
+  /// some elements were added, as add_element would count it: the bound only
+  /// falls as elements are added (the extremes only widen, and a range that
+  /// contains a right angle keeps containing it), so the element would pass
+  /// the bound of now too. False, with nothing counted, when an angle that
+  /// is not a number has been added since: then add_element.
   bool pass_over()
   {
     if(not_a_number_)

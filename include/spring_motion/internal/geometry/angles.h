@@ -421,8 +421,8 @@ SPRING_MOTION_LANES_INLINE void dihedral_sines_squared_lanes(const T (&c)[12], d
     (void)to;
   // & rather than &&: no branch per edge
   above = in_range & (v2 >= 1e-12 * longest * longest * longest) & (v2 * l01 > b01 * (f2 * f3)) &
-         (v2 * l02 > b02 * (f1 * f3)) & (v2 * l03 > b03 * (f1 * f2)) & (v2 * l12 > b12 * (f0 * f3)) &
-         (v2 * l13 > b13 * (f0 * f2)) & (v2 * l23 > b23 * (f0 * f1));
+          (v2 * l02 > b02 * (f1 * f3)) & (v2 * l03 > b03 * (f1 * f2)) & (v2 * l12 > b12 * (f0 * f3)) &
+          (v2 * l13 > b13 * (f0 * f2)) & (v2 * l23 > b23 * (f0 * f1));
 }
 
 template <bool Kinds>

@@ -457,9 +457,16 @@ private:
             else {
               const auto p = internal::traversal_element_points<D>(slots, xt, std::size_t(t));
               if(traversal_moving_[std::size_t(t)]) {
-                const auto e = internal::element_extreme_angles<D>(p);
-                my_all.add(e);
-                my_moving.add(e);
+                // passed over by the bound of the moving set's extremes, it
+                // lies inside all's too: all holds every element moving holds
+                if(my_moving.try_pass_over<D>(p)) {
+                  if(!my_all.pass_over())
+                    my_all.add(internal::element_extreme_angles<D>(p));
+                } else {
+                  const auto e = internal::element_extreme_angles<D>(p);
+                  my_all.add(e);
+                  my_moving.add(e);
+                }
               } else
                 my_all.add_element<D>(p);
               measure = measured ? measures[l] : scaled_measure(p);
@@ -517,7 +524,8 @@ private:
   // AVX registers: passed[l], whether tetrahedron first + l passes the
   // first bound test of `all` (as add_element would begin), and measures[l],
   // its scaled_measure; false, with neither written, for a group with a
-  // tetrahedron at the moving boundary (whose angles are all computed), when
+  // tetrahedron at the moving boundary (tested one at a time against the
+  // bound of the moving set's extremes, which a lane does not read), when
   // no bound can pass an element, or when the scale is not a plain product.
   bool test_four_quality_lanes(const internal::Angle_slots& slots, const std::vector<Point>& xt, std::size_t first,
                                internal::Quality_extremes& all, bool (&passed)[4], double (&measures)[4]) const

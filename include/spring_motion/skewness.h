@@ -151,6 +151,17 @@ public:
   template <int D>
   bool add_element(const std::array<std::array<double, D>, D + 1>& p)
   {
+    if(try_pass_over<D>(p))
+      return true;
+    add(element_extreme_angles<D>(p));
+    return false;
+  }
+  /// add_element's bound tests alone: counts the element with corners p and
+  /// returns true when add_element would pass it over; false, with nothing
+  /// added, otherwise (then its angles are still to be added).
+  template <int D>
+  bool try_pass_over(const std::array<std::array<double, D>, D + 1>& p)
+  {
     refresh_bounds();
     if(!not_a_number_) {
       // first the larger bound for all the angles, which on the wing passes
@@ -171,7 +182,6 @@ public:
         return true;
       }
     }
-    add(element_extreme_angles<D>(p));
     return false;
   }
   /// The bound add_element tests an element's sin^2 against first, for a
@@ -186,8 +196,10 @@ public:
   /// some elements were added, as add_element would count it: the bound only
   /// falls as elements are added (the extremes only widen, and a range that
   /// contains a right angle keeps containing it), so the element would pass
-  /// the bound of now too. False, with nothing counted, when an angle that
-  /// is not a number has been added since: then add_element.
+  /// the bound of now too. Or one that a set of some of these elements
+  /// passed over (try_pass_over): its angles lie inside that set's extremes,
+  /// so inside these. False, with nothing counted, when an angle that is
+  /// not a number has been added: then add_element.
   bool pass_over()
   {
     if(not_a_number_)

@@ -341,7 +341,10 @@ TEST_CASE("deform: the reports give the smallest and largest area ratio", "[defo
 // pass guesses its extremes from the step before. Each step's figures must
 // be those of every element's angles computed one by one, also at the jump
 // back, where the extremes improve past the guess and the pass is made
-// again.
+// again. With `squeezed`, the vertex next to a corner of the box is moved
+// towards its neighbour: the worst elements then lie far from the hole, and
+// the moving set's extremes inside the whole set's (the pass tests an
+// element at the hole against the moving set's own bound).
 TEMPLATE_TEST_CASE("deform: each step's quality on a Kuhn grid equals the elements' own, the guess of the extremes "
                    "missed or not",
                    "[deform][quality]", (std::integral_constant<int, 2>), (std::integral_constant<int, 3>))
@@ -349,9 +352,12 @@ TEMPLATE_TEST_CASE("deform: each step's quality on a Kuhn grid equals the elemen
   constexpr int D = TestType::value;
   using Point = std::array<double, D>;
   const double jitter = GENERATE(0.0, 0.15);
-  INFO("jitter " << jitter);
+  const bool squeezed = GENERATE(false, true);
+  INFO("jitter " << jitter << (squeezed ? ", squeezed" : ""));
   // the 8^D cells' elements, without those of the 2^D cells around the centre
-  const Indexed_mesh<D> box = spring_motion_test::kuhn_grid<D>(8, jitter);
+  Indexed_mesh<D> box = spring_motion_test::kuhn_grid<D>(8, jitter);
+  if(squeezed)
+    box.points[D == 2 ? 1 + 9 : 1 + 9 + 81][0] += 0.4; // the lattice's (1, 1) or (1, 1, 1)
   // the hole and its vertices found on the unjittered lattice (the same numbering)
   const Indexed_mesh<D> lattice = spring_motion_test::kuhn_grid<D>(8, 0.0);
   const auto in_hole = [](const Point& p, bool closed) {
@@ -408,6 +414,8 @@ TEMPLATE_TEST_CASE("deform: each step's quality on a Kuhn grid equals the elemen
         }
       }
       INFO("step " << step << " (" << degrees << " degrees), " << threads << " thread(s)");
+      if(squeezed) // the premise: the smallest angle lies away from the hole
+        CHECK(angle_moving > *std::min_element(min_angle.begin(), min_angle.end()));
       CHECK(s.max_skewness_all == *std::max_element(r.begin(), r.end()));
       CHECK(s.min_angle_deg_all == *std::min_element(min_angle.begin(), min_angle.end()));
       CHECK(s.max_skewness_moving == r_moving);

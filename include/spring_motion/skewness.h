@@ -196,10 +196,10 @@ public:
   /// some elements were added, as add_element would count it: the bound only
   /// falls as elements are added (the extremes only widen, and a range that
   /// contains a right angle keeps containing it), so the element would pass
-  /// the bound of now too. Or one that a set of some of these elements
-  /// passed over (try_pass_over): its angles lie inside that set's extremes,
-  /// so inside these. False, with nothing counted, when an angle that is
-  /// not a number has been added: then add_element.
+  /// the bound of now too. Or one that another set, holding only elements
+  /// this one holds, passed over (try_pass_over): its angles lie inside that
+  /// set's extremes, so inside these. False, with nothing counted, when an
+  /// angle that is not a number has been added: then add_element.
   bool pass_over()
   {
     if(not_a_number_)

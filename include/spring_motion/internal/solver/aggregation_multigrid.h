@@ -279,10 +279,10 @@ private:
   {
     std::size_t n = 0;                  // unknowns of this level
     std::vector<Index> parent_of;       // finer unknown -> aggregate (this level's unknown)
-    std::vector<Index> slot_of;         // finer off-diagonal entry -> entry here, or none (inside an aggregate)
+    std::vector<Index> slot_of;         // finer off-diagonal entry -> entry here, or a spare (inside an aggregate)
     std::vector<Index> offsets, col;    // this level's pattern
     std::vector<Index> member_offsets, members; // aggregate -> its finer unknowns (Aggregates)
-    std::vector<double> values, diag, inv_diag; // per entry / row
+    std::vector<double> values, diag, inv_diag; // per entry, then spare_slots never read / per row
     std::vector<Row> rhs, z;
     Csr_view view() const { return {n, offsets.data(), col.data(), values.data(), diag.data(), false}; }
   };

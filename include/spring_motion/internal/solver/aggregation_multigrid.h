@@ -282,13 +282,16 @@ private:
     std::vector<Index> slot_of;         // finer off-diagonal entry -> entry here, or a spare (inside an aggregate)
     std::vector<Index> offsets, col;    // this level's pattern
     std::vector<Index> member_offsets, members; // aggregate -> its finer unknowns (Aggregates)
-    std::vector<double> values, diag, inv_diag; // per entry, then spare_slots never read / per row
+    std::vector<double> values, diag, inv_diag; // per entry, then spares never read (see sum_values) / per row
     std::vector<Row> rhs, z;
     Csr_view view() const { return {n, offsets.data(), col.data(), values.data(), diag.data(), false}; }
   };
 
   static constexpr Index none = std::numeric_limits<Index>::max();
   static constexpr Index spare_slots = 8;
+  // the spares of the team pass's threads lie this far apart: 128 bytes, so
+  // no two threads write to one cache line
+  static constexpr Index spare_stride = 2 * spare_slots;
 
   // the aggregates of level a (the next level's unknowns and pattern)
   bool aggregate(const Csr_view& a, Level& L) const
@@ -333,7 +336,10 @@ private:
   // give the same bits (the thread-determinism tests compare them). On one
   // thread the pass is the faster (it reads the finer rows in order, the
   // members' rows lie apart); on two, the aggregates share out work that
-  // kept the second thread waiting.
+  // kept the second thread waiting. Each thread adds its entries inside an
+  // aggregate to spares of its own (finer_row_sum), spare_stride apart past
+  // the pattern's entries: shared, their cache lines would pass between the
+  // cores at every row.
   static void sum_values(const Csr_view& a, Level& L, int threads)
   {
     const int nt = thread_count(threads, a.rows);
@@ -341,10 +347,14 @@ private:
       std::fill(L.values.begin(), L.values.end(), 0.0);
       std::fill(L.diag.begin(), L.diag.end(), 0.0);
       for(std::size_t i = 0; i < a.rows; ++i)
-        L.diag[L.parent_of[i]] += finer_row_sum<true>(a, L, i);
+        L.diag[L.parent_of[i]] += finer_row_sum(a, L, i);
     } else {
       const long na = long(L.n);
+      const std::size_t spares = L.col.size() + std::size_t(spare_stride) * std::size_t(nt);
+      if(L.values.size() < spares)
+        L.values.resize(spares);
       in_team(nt, [&] {
+        const Index spare_base = Index(omp_get_thread_num()) * spare_stride;
 #pragma omp for schedule(static)
         for(long A = 0; A < na; ++A) {
           const std::size_t b = std::size_t(A);
@@ -360,7 +370,7 @@ private:
               __builtin_prefetch(&a.values[a.offsets[L.members[m + 1]]]);
               __builtin_prefetch(&L.slot_of[a.offsets[L.members[m + 1]]]);
             }
-            dA += finer_row_sum<false>(a, L, L.members[m]);
+            dA += finer_row_sum(a, L, L.members[m], spare_base);
           }
           L.diag[b] = dA;
         }
@@ -384,31 +394,26 @@ private:
   // never read (the spares vary with q, so one slot's additions do not
   // chain), and an entry between aggregates adds 0 to d, which leaves d's
   // bits as they were (d is never -0: it starts at a positive diagonal, and
-  // a sum rounds to -0 only from two -0 terms). `Spares` false: with a
-  // branch, for threads that share the spare slots.
-  template <bool Spares>
-  static double finer_row_sum(const Csr_view& a, Level& L, std::size_t i)
+  // a sum rounds to -0 only from two -0 terms). `spare_base`: the calling
+  // thread's spares lie that far past slot_of's (see sum_values).
+  static double finer_row_sum(const Csr_view& a, Level& L, std::size_t i, Index spare_base = 0)
   {
     const Index entries = Index(L.col.size());
     double d = a.diag[i];
     for(Index q = a.offsets[i]; q < a.offsets[i + 1]; ++q) {
-      const Index s = L.slot_of[q];
+      const Index slot = L.slot_of[q];
       const double v = a.values[q];
-      const bool inside = s >= entries;
-      if constexpr(Spares) {
-        // as masks: GCC turns the two choices of a value into a branch
-        std::uint64_t bits, in = 0 - std::uint64_t(inside);
-        std::memcpy(&bits, &v, sizeof v);
-        const std::uint64_t to_d = bits & in, to_entry = bits & ~in;
-        double vd, ve;
-        std::memcpy(&vd, &to_d, sizeof vd);
-        std::memcpy(&ve, &to_entry, sizeof ve);
-        d += vd;
-        L.values[s] += ve;
-      } else if(inside)
-        d += v;
-      else
-        L.values[s] += v;
+      const bool inside = slot >= entries;
+      // as masks: GCC turns the two choices of a value into a branch
+      const Index s = slot + (spare_base & (Index(0) - Index(inside)));
+      std::uint64_t bits, in = 0 - std::uint64_t(inside);
+      std::memcpy(&bits, &v, sizeof v);
+      const std::uint64_t to_d = bits & in, to_entry = bits & ~in;
+      double vd, ve;
+      std::memcpy(&vd, &to_d, sizeof vd);
+      std::memcpy(&ve, &to_entry, sizeof ve);
+      d += vd;
+      L.values[s] += ve;
     }
     return d;
   }

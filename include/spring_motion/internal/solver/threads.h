@@ -19,6 +19,17 @@
 namespace spring_motion {
 namespace internal {
 
+/// The calling thread's number in its OpenMP team: 0 outside a parallel
+/// region, or without OpenMP.
+inline int thread_number()
+{
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
 /// The thread count for an OpenMP region: `requested`, or OpenMP's default
 /// when it is 0 (num_threads(0) is not allowed).
 inline int thread_count(int requested)

@@ -318,8 +318,8 @@ private:
       if(L.slot_of[q] == none)
         L.slot_of[q] = entries + q % spare_slots;
     // the spares of a team of OpenMP's default size, allocated here: made
-    // at the first team step, the larger copy (values are 1.6 MB on the
-    // wing's first level) raised the wing run's peak memory by 2 MB
+    // at the first team step, the larger copies of the levels' values
+    // raised the wing run's peak memory by 2 MB
     L.values.resize(L.col.size() + std::size_t(spare_stride) * std::size_t(thread_count(0)));
     L.diag.resize(L.n);
     L.inv_diag.resize(L.n);
